@@ -1,0 +1,137 @@
+// GPU buffer structs, binding indices and workgroup sizes shared by host, GLSL and OpenCL.
+// Every struct is made of 16-byte vec4/uvec4 fields so std430, OpenCL and C++ agree on the
+// layout; the host checks sizes with static_assert (src/render/gpu_layout_check.cpp).
+#ifndef WP_LAYOUT_H
+#define WP_LAYOUT_H
+
+#include "portable.h"
+
+WP_BEGIN
+
+#define WP_WORKGROUP_SIZE 64u
+
+// Storage buffer binding indices (set 0) for the Vulkan stages; OpenCL passes them as
+// kernel arguments in the same order.
+#define WP_BINDING_PARAMS 0u        // RenderParams (uniform)
+#define WP_BINDING_NODES 1u         // BvhNode[]: all bottom-level BVHs, then the top level
+#define WP_BINDING_TRIANGLES 2u     // GpuTriangle[] in BVH leaf order
+#define WP_BINDING_INSTANCES 3u     // GpuInstance[]
+#define WP_BINDING_PLANES 4u        // GpuPlane[]
+#define WP_BINDING_MATERIALS 5u     // GpuMaterial[]
+#define WP_BINDING_LIGHTS 6u        // GpuLight[]
+#define WP_BINDING_RAYS 7u          // PathRay[2 * maxPaths]: two ping-pong queues
+#define WP_BINDING_HITS 8u          // HitRecord[maxPaths]
+#define WP_BINDING_SHADOW_RAYS 9u   // ShadowRay[maxPaths]
+#define WP_BINDING_PATH_RADIANCE 10u  // vec4[maxPaths]: radiance of each path this pass
+#define WP_BINDING_COUNTERS 11u     // QueueCounters
+#define WP_BINDING_ACCUM 12u        // vec4[2 * pixels]: sum of radiance, sum of squares
+#define WP_BINDING_COUNT 13u
+
+// Integrator modes (RenderParams.mode.y).
+#define WP_MODE_MIS 0u
+#define WP_MODE_NEE 1u
+#define WP_MODE_BSDF 2u
+
+// GpuInstance.info.x: what the instance is.
+#define WP_INSTANCE_MESH 0u
+#define WP_INSTANCE_SPHERE 1u  // unit sphere at the object-space origin
+
+#define WP_INVALID 0xffffffffu
+
+// BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
+// count 0 is an interior node whose index is `index`; a child with count > 0 is a leaf
+// holding primitives [index, index + count). An empty child has min > max and count 0 and
+// index WP_INVALID. Bottom-level leaves hold triangles, the top level holds instances.
+WP_STRUCT(BvhNode)
+  vec4 leftMin;   // xyz: bounds min; w: asFloat(left index)
+  vec4 leftMax;   // xyz: bounds max; w: asFloat(left count)
+  vec4 rightMin;  // xyz; w: asFloat(right index)
+  vec4 rightMax;  // xyz; w: asFloat(right count)
+WP_STRUCT_END(BvhNode)
+
+// Triangle in object space, stored in BVH leaf order: 64 bytes.
+WP_STRUCT(GpuTriangle)
+  vec4 v0;     // xyz: vertex 0
+  vec4 edge1;  // xyz: v1 - v0
+  vec4 edge2;  // xyz: v2 - v0
+  uvec4 info;  // x: material index, y: emitter ordinal within its mesh or WP_INVALID
+WP_STRUCT_END(GpuTriangle)
+
+// One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
+WP_STRUCT(GpuInstance)
+  vec4 worldToObject0;  // rows of the 3x4 world-to-object matrix
+  vec4 worldToObject1;
+  vec4 worldToObject2;
+  uvec4 info;  // x: WP_INSTANCE_*, y: BVH root node (mesh) or material (sphere),
+               // z: first light index of this instance's emissive triangles, w: unused
+WP_STRUCT_END(GpuInstance)
+
+// Infinite plane dot(n, p) = d, 32 bytes.
+WP_STRUCT(GpuPlane)
+  vec4 normalDistance;  // xyz: unit normal, w: d
+  uvec4 info;           // x: material index
+WP_STRUCT_END(GpuPlane)
+
+WP_STRUCT(GpuMaterial)
+  vec4 baseColor;  // rgb: linear albedo, a: alpha
+  vec4 emission;   // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
+WP_STRUCT_END(GpuMaterial)
+
+// Emissive triangle in world space, with its alias-table entry for power-proportional
+// selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else
+// take alias), 80 bytes.
+WP_STRUCT(GpuLight)
+  vec4 v0;        // xyz: vertex 0, w: area
+  vec4 edge1;     // xyz: v1 - v0, w: probability of selecting this light
+  vec4 edge2;     // xyz: v2 - v0, w: alias threshold in [0, 1]
+  vec4 emission;  // rgb: radiance, w: unused
+  uvec4 info;     // x: alias index, y: 1 if it emits on both sides (else the front only,
+                  // the side of cross(edge1, edge2)), z, w: unused
+WP_STRUCT_END(GpuLight)
+
+// Per-frame settings, a uniform buffer (OpenCL: a constant argument).
+WP_STRUCT(RenderParams)
+  vec4 cameraPosition;  // xyz; w: unused
+  vec4 cameraRight;     // xyz: image-plane x axis scaled by tan(fovY/2) * aspect
+  vec4 cameraUp;        // xyz: image-plane y axis scaled by tan(fovY/2)
+  vec4 cameraForward;   // xyz: unit view direction
+  vec4 skyRadiance;     // rgb: constant sky radiance seen by rays that leave the scene
+  uvec4 image;          // x: width, y: height, z: pixel count, w: seed
+  uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
+                        // w: number of lights
+  uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
+WP_STRUCT_END(RenderParams)
+
+// One path waiting to be traced: 64 bytes.
+WP_STRUCT(PathRay)
+  vec4 origin;      // xyz; w: asFloat(path slot in this pass)
+  vec4 direction;   // xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
+  vec4 throughput;  // rgb; w: unused
+  uvec4 state;      // x: RNG state, y: bounce of the vertex this ray will hit, z, w: unused
+WP_STRUCT_END(PathRay)
+
+// Closest hit of the PathRay at the same queue position: 16 bytes.
+WP_STRUCT(HitRecord)
+  uvec4 hit;  // x: asUint(t) (WP_INVALID: miss), y: instance or plane index | WP_HIT_PLANE,
+              // z: primitive (global triangle index), w: unused
+WP_STRUCT_END(HitRecord)
+#define WP_HIT_PLANE 0x80000000u
+
+// Next-event-estimation shadow ray: 48 bytes.
+WP_STRUCT(ShadowRay)
+  vec4 origin;        // xyz; w: asFloat(path slot)
+  vec4 direction;     // xyz: unit; w: distance to the light sample (exclusive)
+  vec4 contribution;  // rgb: radiance added to the path if unoccluded
+WP_STRUCT_END(ShadowRay)
+
+// Queue sizes and indirect dispatch arguments, written on the GPU.
+WP_STRUCT(QueueCounters)
+  uvec4 counts;           // x, y: ray queues 0 and 1; z, w: shadow queues of even/odd bounces
+  uvec4 totals;           // x: extension rays traced this pass, y: shadow rays
+  uvec4 extendDispatch;   // xyz: VkDispatchIndirectCommand for extend and shade
+  uvec4 connectDispatch;  // xyz: VkDispatchIndirectCommand for connect
+WP_STRUCT_END(QueueCounters)
+
+WP_END
+
+#endif

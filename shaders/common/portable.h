@@ -1,0 +1,26 @@
+// Selects the language prelude so the physics headers compile as GLSL, OpenCL C and C++.
+#ifndef WP_PORTABLE_H
+#define WP_PORTABLE_H
+
+// Rules for code under shaders/common (so all three compilers accept it):
+// - types: float, uint, int, bool, vec2/3/4, uvec2/4; build vectors with make_vec3(...) etc.
+// - conversions with toFloat/toUint/toInt, bit casts with asFloat/asUint;
+// - float literals carry an f suffix (OpenCL would otherwise compute in double);
+// - use fabs for floats (abs is integer-only in OpenCL);
+// - no out/inout parameters: functions return structs;
+// - structs are declared with WP_STRUCT(Name) ... WP_STRUCT_END(Name);
+// - functions are declared WP_FN; code sits between WP_BEGIN and WP_END;
+// - no file-scope const variables (OpenCL wants __constant): use #define.
+#if defined(__cplusplus)
+#include "prelude_cpp.h"
+#elif defined(__OPENCL_VERSION__)
+#include "prelude_cl.h"
+#else
+#include "prelude_glsl.h"
+#endif
+
+#define WP_PI 3.14159265358979f
+#define WP_INV_PI 0.318309886183791f
+#define WP_FLT_MAX 3.402823466e+38f
+
+#endif

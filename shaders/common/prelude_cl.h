@@ -1,0 +1,28 @@
+// OpenCL C mapping of the portable shader language.
+#ifndef WP_PRELUDE_CL_H
+#define WP_PRELUDE_CL_H
+
+typedef float2 vec2;
+typedef float3 vec3;
+typedef float4 vec4;
+typedef uint2 uvec2;
+typedef uint4 uvec4;
+
+#define WP_BEGIN
+#define WP_END
+#define WP_FN
+#define WP_STRUCT(name) typedef struct name {
+#define WP_STRUCT_END(name) } name;
+#define WP_GLOBAL_PTR(type) __global const type*
+
+#define make_vec2(x, y) ((float2)((x), (y)))
+#define make_vec3(x, y, z) ((float3)((x), (y), (z)))
+#define make_vec4(x, y, z, w) ((float4)((x), (y), (z), (w)))
+#define make_uvec4(x, y, z, w) ((uint4)((x), (y), (z), (w)))
+#define toFloat(x) ((float)(x))
+#define toUint(x) ((uint)(x))
+#define toInt(x) ((int)(x))
+#define asFloat(x) as_float(x)
+#define asUint(x) as_uint(x)
+
+#endif

@@ -1,0 +1,36 @@
+// C++ (GLM) mapping of the portable shader language, used by unit tests and host code.
+#ifndef WP_PRELUDE_CPP_H
+#define WP_PRELUDE_CPP_H
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace wp::gpu {
+using namespace glm;
+using uint = std::uint32_t;
+
+inline float fabs(float x) { return std::fabs(x); }
+inline vec3 fabs(vec3 v) { return glm::abs(v); }
+inline float asFloat(uint u) { return std::bit_cast<float>(u); }
+inline uint asUint(float f) { return std::bit_cast<uint>(f); }
+}  // namespace wp::gpu
+
+#define WP_BEGIN namespace wp::gpu {
+#define WP_END }
+#define WP_FN inline
+#define WP_STRUCT(name) struct name {
+#define WP_STRUCT_END(name) };
+// Pointer to device-global memory in function parameters (GLSL reads buffers as globals).
+#define WP_GLOBAL_PTR(type) const type*
+
+#define make_vec2(x, y) vec2((x), (y))
+#define make_vec3(x, y, z) vec3((x), (y), (z))
+#define make_vec4(x, y, z, w) vec4((x), (y), (z), (w))
+#define make_uvec4(x, y, z, w) uvec4((x), (y), (z), (w))
+#define toFloat(x) static_cast<float>(x)
+#define toUint(x) static_cast<uint>(x)
+#define toInt(x) static_cast<int>(x)
+
+#endif

@@ -1,0 +1,24 @@
+// GLSL mapping of the portable shader language.
+#ifndef WP_PRELUDE_GLSL_H
+#define WP_PRELUDE_GLSL_H
+
+#define WP_BEGIN
+#define WP_END
+#define WP_FN
+#define WP_STRUCT(name) struct name {
+#define WP_STRUCT_END(name) };
+
+#define make_vec2(x, y) vec2((x), (y))
+#define make_vec3(x, y, z) vec3((x), (y), (z))
+#define make_vec4(x, y, z, w) vec4((x), (y), (z), (w))
+#define make_uvec4(x, y, z, w) uvec4((x), (y), (z), (w))
+#define toFloat(x) float(x)
+#define toUint(x) uint(x)
+#define toInt(x) int(x)
+#define asFloat(x) uintBitsToFloat(x)
+#define asUint(x) floatBitsToUint(x)
+
+float fabs(float x) { return abs(x); }
+vec3 fabs(vec3 v) { return abs(v); }
+
+#endif

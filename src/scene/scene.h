@@ -1,0 +1,71 @@
+// The host-side scene: what the glTF loader produces and the GPU packer consumes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace wp {
+
+struct Material {
+  std::string name;
+  glm::vec3 baseColor{1.0f};  // linear RGB albedo
+  float alpha = 1.0f;
+  glm::vec3 emission{0.0f};  // emitted radiance: emissiveFactor * emissive_strength
+  bool doubleSided = false;  // glTF doubleSided; a single-sided emitter emits on its front only
+
+  bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
+};
+
+// A triangle mesh in object space. All glTF primitives of a mesh are merged into one.
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;    // 3 per triangle, counter-clockwise = front face
+  std::vector<uint32_t> materials;  // one material index per triangle
+
+  size_t triangleCount() const { return indices.size() / 3; }
+};
+
+struct MeshInstance {
+  uint32_t mesh = 0;
+  glm::mat4 objectToWorld{1.0f};
+};
+
+// Analytic sphere: the unit sphere at the origin mapped by objectToWorld (radius and
+// centre are folded into the transform).
+struct Sphere {
+  glm::mat4 objectToWorld{1.0f};
+  uint32_t material = 0;
+};
+
+// Infinite plane dot(normal, p) = distance, with a unit normal.
+struct Plane {
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  float distance = 0.0f;
+  uint32_t material = 0;
+};
+
+// Pinhole camera (thin lens comes with the camera issue).
+struct Camera {
+  glm::vec3 position{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit
+  glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, orthogonal to forward
+  float yfov = 0.7853982f;               // vertical field of view in radians
+  float aspectRatio = 0.0f;              // from the file; 0 = use the image's
+};
+
+struct Scene {
+  std::vector<Material> materials;
+  std::vector<Mesh> meshes;
+  std::vector<MeshInstance> instances;
+  std::vector<Sphere> spheres;
+  std::vector<Plane> planes;
+  Camera camera;
+  bool hasCamera = false;           // false: the camera was framed automatically
+  glm::vec3 skyRadiance{0.0f};      // constant sky; white when the scene has no emitters
+};
+
+}  // namespace wp
