@@ -8,23 +8,23 @@
 
 WP_BEGIN
 
-#define WP_WORKGROUP_SIZE 64u
+#define WP_WORKGROUP_SIZE 64
 
 // Storage buffer binding indices (set 0) for the Vulkan stages; OpenCL passes them as
 // kernel arguments in the same order.
-#define WP_BINDING_PARAMS 0u        // RenderParams (uniform)
-#define WP_BINDING_NODES 1u         // BvhNode[]: all bottom-level BVHs, then the top level
-#define WP_BINDING_TRIANGLES 2u     // GpuTriangle[] in BVH leaf order
-#define WP_BINDING_INSTANCES 3u     // GpuInstance[]
-#define WP_BINDING_PLANES 4u        // GpuPlane[]
-#define WP_BINDING_MATERIALS 5u     // GpuMaterial[]
-#define WP_BINDING_LIGHTS 6u        // GpuLight[]
-#define WP_BINDING_RAYS 7u          // PathRay[2 * maxPaths]: two ping-pong queues
-#define WP_BINDING_HITS 8u          // HitRecord[maxPaths]
-#define WP_BINDING_SHADOW_RAYS 9u   // ShadowRay[maxPaths]
-#define WP_BINDING_PATH_RADIANCE 10u  // vec4[maxPaths]: radiance of each path this pass
-#define WP_BINDING_COUNTERS 11u     // QueueCounters
-#define WP_BINDING_ACCUM 12u        // vec4[2 * pixels]: sum of radiance, sum of squares
+#define WP_BINDING_PARAMS 0        // RenderParams (uniform)
+#define WP_BINDING_NODES 1         // BvhNode[]: all bottom-level BVHs, then the top level
+#define WP_BINDING_TRIANGLES 2     // GpuTriangle[] in BVH leaf order
+#define WP_BINDING_INSTANCES 3     // GpuInstance[]
+#define WP_BINDING_PLANES 4        // GpuPlane[]
+#define WP_BINDING_MATERIALS 5     // GpuMaterial[]
+#define WP_BINDING_LIGHTS 6        // GpuLight[]
+#define WP_BINDING_RAYS 7          // PathRay[2 * maxPaths]: two ping-pong queues
+#define WP_BINDING_HITS 8          // HitRecord[maxPaths]
+#define WP_BINDING_SHADOW_RAYS 9   // ShadowRay[maxPaths]
+#define WP_BINDING_PATH_RADIANCE 10  // vec4[maxPaths]: radiance of each path this pass
+#define WP_BINDING_COUNTERS 11     // QueueCounters
+#define WP_BINDING_ACCUM 12        // vec4[2 * pixels]: sum of radiance, sum of squares
 #define WP_BINDING_COUNT 13u
 
 // Integrator modes (RenderParams.mode.y).
@@ -124,13 +124,29 @@ WP_STRUCT(ShadowRay)
   vec4 contribution;  // rgb: radiance added to the path if unoccluded
 WP_STRUCT_END(ShadowRay)
 
-// Queue sizes and indirect dispatch arguments, written on the GPU.
+// Queue sizes and indirect dispatch arguments, written on the GPU. Kernels address it as a
+// flat uint array (atomics need a plain uint lvalue) through the word indices below.
 WP_STRUCT(QueueCounters)
   uvec4 counts;           // x, y: ray queues 0 and 1; z, w: shadow queues of even/odd bounces
   uvec4 totals;           // x: extension rays traced this pass, y: shadow rays
   uvec4 extendDispatch;   // xyz: VkDispatchIndirectCommand for extend and shade
   uvec4 connectDispatch;  // xyz: VkDispatchIndirectCommand for connect
 WP_STRUCT_END(QueueCounters)
+#define WP_COUNTER_RAYS 0u            // + queue (0 or 1)
+#define WP_COUNTER_SHADOW_RAYS 2u     // + bounce parity
+#define WP_COUNTER_TOTAL_RAYS 4u
+#define WP_COUNTER_TOTAL_SHADOW_RAYS 5u
+#define WP_COUNTER_EXTEND_DISPATCH 8u
+#define WP_COUNTER_CONNECT_DISPATCH 12u
+#define WP_COUNTER_WORDS 16u
+
+// Per-dispatch constants (Vulkan push constants, OpenCL kernel arguments). A pass traces
+// `pathCount` paths: path slot i is pixel (firstPixel + i) % pixels of sample
+// firstSample + (firstPixel + i) / pixels, so a pass may span several samples of a small
+// image while every slot of one pixel is accumulated in sample order.
+WP_STRUCT(PassConstants)
+  uvec4 pass;  // x: firstPixel, y: firstSample, z: pathCount, w: bounce
+WP_STRUCT_END(PassConstants)
 
 WP_END
 

@@ -1,0 +1,82 @@
+// Reconstructs the surface at a hit (position, geometric normal, material, light index)
+// from the hit record and the scene buffers.
+#ifndef WP_SURFACE_H
+#define WP_SURFACE_H
+
+#include "layout.h"
+
+WP_BEGIN
+
+#if defined(__cplusplus) || defined(__OPENCL_VERSION__)
+#define WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuTriangle) triangles, WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes,
+#define WP_SURFACE_BUFFER_ARGS triangles, instances, planes,
+#else
+#define WP_SURFACE_BUFFERS
+#define WP_SURFACE_BUFFER_ARGS
+#endif
+
+WP_STRUCT(SurfaceHit)
+  vec3 position;
+  vec3 normal;    // unit geometric normal, front side (counter-clockwise winding, outside)
+  uint material;
+  uint light;     // index into the light buffer, WP_INVALID if not a sampled light
+WP_STRUCT_END(SurfaceHit)
+
+// Transforms an object-space normal to world space with the inverse transpose, which for a
+// world-to-object matrix M is transpose(M).
+WP_FN vec3 normalToWorld(GpuInstance inst, vec3 n) {
+  vec3 r0 = make_vec3(inst.worldToObject0.x, inst.worldToObject0.y, inst.worldToObject0.z);
+  vec3 r1 = make_vec3(inst.worldToObject1.x, inst.worldToObject1.y, inst.worldToObject1.z);
+  vec3 r2 = make_vec3(inst.worldToObject2.x, inst.worldToObject2.y, inst.worldToObject2.z);
+  return normalize(r0 * n.x + r1 * n.y + r2 * n.z);
+}
+
+WP_FN vec3 pointToObject(GpuInstance inst, vec3 p) {
+  vec4 q = make_vec4(p.x, p.y, p.z, 1.0f);
+  return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
+}
+
+// `instanceField` and `primitive` are HitRecord.hit.y and .z of a hit (not a miss).
+WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive, vec3 position) {
+  SurfaceHit s;
+  s.position = position;
+  s.light = WP_INVALID;
+  if ((instanceField & WP_HIT_PLANE) != 0u) {
+    GpuPlane plane = planes[instanceField & ~WP_HIT_PLANE];
+    s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
+    s.material = plane.info.x;
+    return s;
+  }
+  GpuInstance inst = instances[instanceField];
+  if (inst.info.x == WP_INSTANCE_SPHERE) {
+    s.normal = normalToWorld(inst, pointToObject(inst, position));
+    s.material = inst.info.y;
+    return s;
+  }
+  GpuTriangle tri = triangles[primitive];
+  vec3 e1 = make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z);
+  vec3 e2 = make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z);
+  s.normal = normalToWorld(inst, cross(e1, e2));
+  s.material = tri.info.x;
+  s.light = tri.info.y == WP_INVALID ? WP_INVALID : inst.info.z + tri.info.y;
+  return s;
+}
+
+// Moves a ray origin off the surface along the side of `normal` it leaves from, by a few
+// floating-point ulps relative to the position's magnitude (Waechter & Binder, "A Fast and
+// Robust Method for Avoiding Self-Intersection", Ray Tracing Gems 2019), so secondary rays
+// neither re-hit their own surface nor tunnel through thin geometry at any scene scale.
+WP_FN float offsetCoordinate(float p, float n) {
+  int steps = toInt(256.0f * n);
+  uint bits = asUint(p) + toUint(p < 0.0f ? -steps : steps);
+  return fabs(p) < 0.03125f ? p + n * 1.52587890625e-5f : asFloat(bits);
+}
+
+WP_FN vec3 offsetRayOrigin(vec3 p, vec3 normal, vec3 direction) {
+  vec3 n = dot(normal, direction) >= 0.0f ? normal : -normal;
+  return make_vec3(offsetCoordinate(p.x, n.x), offsetCoordinate(p.y, n.y), offsetCoordinate(p.z, n.z));
+}
+
+WP_END
+
+#endif

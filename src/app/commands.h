@@ -1,0 +1,34 @@
+// The wavepath subcommands and their options.
+#pragma once
+
+#include <string>
+
+#include "render/settings.h"
+
+namespace CLI {
+class App;
+}
+
+namespace wp {
+
+struct RenderOptions {
+  std::string scene;
+  std::string output;  // empty: <scene name>.png in the working directory
+  RenderSettings settings;
+  bool widthGiven = false;
+  bool heightGiven = false;
+  std::string backend = "vulkan";
+  int device = -1;
+  bool validate = false;  // Khronos validation layer; also WAVEPATH_VALIDATION=1
+  bool timings = false;   // per-stage GPU times, memory and BVH figures
+};
+
+// Adds `render` to the app; the options are filled in when it parses.
+CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options);
+// Renders as the options say; throws wp::Error on bad input. Returns the exit code.
+int runRender(RenderOptions options);
+
+CLI::App* addDevicesCommand(CLI::App& app);
+int runDevices();
+
+}  // namespace wp

@@ -1,0 +1,128 @@
+// `wavepath render`: loads a glTF scene, renders it headless and writes PNG or EXR.
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "app/progress_bar.h"
+#include "backend/vulkan/vulkan_backend.h"
+#include "bvh/gpu_scene.h"
+#include "core/error.h"
+#include "image/image_io.h"
+#include "render/wavefront.h"
+#include "scene/gltf_loader.h"
+
+namespace wp {
+namespace {
+
+// Fills in the image size the user left out from the camera's aspect ratio.
+void resolveImageSize(RenderOptions& options, const Scene& scene) {
+  float aspect = scene.camera.aspectRatio;
+  RenderSettings& s = options.settings;
+  if (aspect <= 0.0f || (options.widthGiven && options.heightGiven)) {
+    return;
+  }
+  if (options.heightGiven) {
+    s.width = std::max(1u, uint32_t(std::lround(s.height * aspect)));
+  } else {
+    s.height = std::max(1u, uint32_t(std::lround(s.width / aspect)));
+  }
+}
+
+double peakMemoryMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;
+}
+
+void printTimings(const RenderStats& stats, const GpuScene& gpuScene) {
+  std::printf("BVH: %zu triangles, built in %.1f ms, SAH cost %.2f\n", gpuScene.triangleCount,
+              gpuScene.bvhBuildSeconds * 1e3, gpuScene.sahCost);
+  std::printf("GPU time per stage over %u passes (ms):", stats.passes);
+  for (int k = 0; k < kKernelCount; ++k) {
+    std::printf(" %s %.1f%s", kernelName(Kernel(k)), stats.kernelMs[k], k + 1 < kKernelCount ? "," : "\n");
+  }
+  std::printf("peak memory: %.0f MiB\n", peakMemoryMiB());
+}
+
+}  // namespace
+
+CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene to a PNG (sRGB) or EXR (linear radiance) file");
+  RenderSettings& s = o.settings;
+  cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  cmd->add_option("-o,--output", o.output, "Output image: .png (tone-clamped sRGB) or .exr (linear, with variance)");
+  cmd->add_option("--spp", s.samplesPerPixel, "Samples per pixel")->check(CLI::Range(1u, 1u << 20));
+  cmd->add_option_function<uint32_t>("--width", [&](const uint32_t& w) { s.width = w; o.widthGiven = true; },
+                                     "Image width in pixels (default 512)")
+      ->check(CLI::Range(1u, 16384u));
+  cmd->add_option_function<uint32_t>("--height", [&](const uint32_t& h) { s.height = h; o.heightGiven = true; },
+                                     "Image height in pixels (default from the camera's aspect ratio, else 512)")
+      ->check(CLI::Range(1u, 16384u));
+  cmd->add_option("--max-depth", s.maxBounces, "Maximum bounces, as Cycles counts them (0 = direct light only)")
+      ->check(CLI::Range(0u, 1024u));
+  cmd->add_option("--seed", s.seed, "Random seed; the same seed gives the same image");
+  static const std::map<std::string, IntegratorMode> modes = {
+      {"mis", IntegratorMode::Mis}, {"nee", IntegratorMode::NeeOnly}, {"bsdf", IntegratorMode::BsdfOnly}};
+  cmd->add_option("--mode", s.mode,
+                  "Light sampling: mis (light and BSDF sampling, balance heuristic), nee (light sampling only), "
+                  "bsdf (BSDF sampling only)")
+      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  cmd->add_option("--rr-start", s.russianRouletteStart, "First bounce at which Russian roulette may end a path");
+  cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each)")
+      ->check(CLI::Range(64u, 4194240u));
+  cmd->add_option("--backend", o.backend, "Compute backend")->check(CLI::IsMember({"vulkan"}));
+  cmd->add_option("--device", o.device, "Device index from 'wavepath devices' (default: the most capable)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--validate", o.validate,
+                "Run with the Khronos validation layer (with synchronization validation); fail on any error");
+  cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
+  return cmd;
+}
+
+int runRender(RenderOptions o) {
+  auto wallStart = std::chrono::steady_clock::now();
+  const char* validationEnv = std::getenv("WAVEPATH_VALIDATION");
+  bool validate = o.validate || (validationEnv != nullptr && std::string(validationEnv) == "1");
+  if (o.output.empty()) {
+    o.output = std::filesystem::path(o.scene).stem().string() + ".png";
+  }
+  checkOutputPath(o.output);
+
+  Scene scene = loadScene(o.scene);
+  resolveImageSize(o, scene);
+  GpuScene gpuScene = packScene(scene);
+
+  VulkanBackend backend(o.device, validate);
+  WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
+  ProgressBar bar;
+  RenderStats stats = renderer.render([&](double fraction) { bar.update(fraction); });
+  bar.finish();
+  RadianceImage image = renderer.image();
+  if (VulkanContext::validationErrorCount() > 0) {
+    throw Error("the Vulkan validation layer reported " + std::to_string(VulkanContext::validationErrorCount()) +
+                " errors (printed above); no image was written");
+  }
+  writeImage(o.output, image);
+
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  double rays = double(stats.extensionRays + stats.shadowRays);
+  std::printf("%s: %ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
+              "(%.1f M extension + %.1f M shadow rays) on %s\n",
+              o.output.c_str(), o.settings.width, o.settings.height, o.settings.samplesPerPixel, stats.seconds, wall,
+              double(stats.samples) / stats.seconds * 1e-6, rays / stats.seconds * 1e-6,
+              double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend.deviceName().c_str());
+  if (o.timings) {
+    printTimings(stats, gpuScene);
+  }
+  return 0;
+}
+
+}  // namespace wp

@@ -1,0 +1,328 @@
+// Vulkan wavefront backend: pipelines, descriptors, pass recording with indirect dispatch,
+// and per-kernel GPU timestamps.
+#include "backend/vulkan/vulkan_backend.h"
+
+#include <cstring>
+
+#include "backend/vulkan/vk_check.h"
+#include "bvh/gpu_scene.h"
+#include "core/error.h"
+#include "spirv/accumulate_spv.h"
+#include "spirv/advance_spv.h"
+#include "spirv/connect_spv.h"
+#include "spirv/extend_spv.h"
+#include "spirv/generate_spv.h"
+#include "spirv/shade_spv.h"
+
+namespace wp {
+namespace {
+
+// Two timestamps per dispatch is ample: a pass has 2 + 4 * (bounces + 2) dispatches.
+constexpr uint32_t kMaxQueries = 1024;
+
+struct SpirvCode {
+  const uint32_t* words;
+  size_t bytes;
+};
+
+SpirvCode spirvFor(Kernel kernel) {
+  switch (kernel) {
+    case Kernel::Generate: return {generate_spv, sizeof(generate_spv)};
+    case Kernel::Extend: return {extend_spv, sizeof(extend_spv)};
+    case Kernel::Shade: return {shade_spv, sizeof(shade_spv)};
+    case Kernel::Advance: return {advance_spv, sizeof(advance_spv)};
+    case Kernel::Connect: return {connect_spv, sizeof(connect_spv)};
+    case Kernel::Accumulate: return {accumulate_spv, sizeof(accumulate_spv)};
+  }
+  return {nullptr, 0};
+}
+
+template <typename T>
+void uploadVector(VulkanContext& context, VulkanBuffer& buffer, const std::vector<T>& data) {
+  buffer = VulkanBuffer(context, data.size() * sizeof(T), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  buffer.upload(data.data(), data.size() * sizeof(T));
+}
+
+}  // namespace
+
+VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
+    : context_(std::make_unique<VulkanContext>(deviceIndex, validation)) {
+  createPipelines();
+  VkDevice device = context_->device;
+
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, WP_BINDING_COUNT - 1}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 2;
+  poolInfo.pPoolSizes = sizes;
+  VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool_));
+  VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  setInfo.descriptorPool = descriptorPool_;
+  setInfo.descriptorSetCount = 1;
+  setInfo.pSetLayouts = &setLayout_;
+  VK_CHECK(vkAllocateDescriptorSets(device, &setInfo, &descriptorSet_));
+
+  VkCommandBufferAllocateInfo cmdInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  cmdInfo.commandPool = context_->commandPool;
+  cmdInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cmdInfo.commandBufferCount = 1;
+  VK_CHECK(vkAllocateCommandBuffers(device, &cmdInfo, &commandBuffer_));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &fence_));
+  if (context_->timestampsSupported) {
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = kMaxQueries;
+    VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
+  }
+  countersReadback_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+}
+
+VulkanBackend::~VulkanBackend() {
+  VkDevice device = context_->device;
+  vkDeviceWaitIdle(device);
+  if (queryPool_ != VK_NULL_HANDLE) {
+    vkDestroyQueryPool(device, queryPool_, nullptr);
+  }
+  vkDestroyFence(device, fence_, nullptr);
+  vkDestroyDescriptorPool(device, descriptorPool_, nullptr);
+  for (VkPipeline pipeline : pipelines_) {
+    vkDestroyPipeline(device, pipeline, nullptr);
+  }
+  vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
+  vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
+  // Buffers are members and release themselves before context_ is destroyed.
+  sceneBuffers_ = {};
+  params_ = {};
+  rays_ = {};
+  hits_ = {};
+  shadowRays_ = {};
+  pathRadiance_ = {};
+  counters_ = {};
+  countersReadback_ = {};
+  accumulation_ = {};
+}
+
+std::string VulkanBackend::deviceName() const {
+  return std::string(context_->properties.deviceName) + " (Vulkan)";
+}
+
+void VulkanBackend::createPipelines() {
+  VkDevice device = context_->device;
+  std::vector<VkDescriptorSetLayoutBinding> bindings(WP_BINDING_COUNT);
+  for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
+    bindings[i].binding = i;
+    bindings[i].descriptorType =
+        i == WP_BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorCount = 1;
+    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layoutInfo.bindingCount = WP_BINDING_COUNT;
+  layoutInfo.pBindings = bindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
+
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::PassConstants)};
+  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout_;
+  pipelineLayoutInfo.pushConstantRangeCount = 1;
+  pipelineLayoutInfo.pPushConstantRanges = &push;
+  VK_CHECK(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_));
+
+  for (int k = 0; k < kKernelCount; ++k) {
+    SpirvCode code = spirvFor(static_cast<Kernel>(k));
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = code.bytes;
+    moduleInfo.pCode = code.words;
+    VkShaderModule module;
+    VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.layout = pipelineLayout_;
+    VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines_[k]);
+    vkDestroyShaderModule(device, module, nullptr);
+    VK_CHECK(result);
+  }
+}
+
+void VulkanBackend::loadScene(const GpuScene& scene) {
+  vkDeviceWaitIdle(context_->device);
+  uploadVector(*context_, sceneBuffers_[0], scene.nodes);
+  uploadVector(*context_, sceneBuffers_[1], scene.triangles);
+  uploadVector(*context_, sceneBuffers_[2], scene.instances);
+  uploadVector(*context_, sceneBuffers_[3], scene.planes);
+  uploadVector(*context_, sceneBuffers_[4], scene.materials);
+  uploadVector(*context_, sceneBuffers_[5], scene.lights);
+  if (params_.handle() != VK_NULL_HANDLE) {
+    writeDescriptors();
+  }
+}
+
+void VulkanBackend::configure(const gpu::RenderParams& params) {
+  if (sceneBuffers_[0].handle() == VK_NULL_HANDLE) {
+    throw Error("internal: VulkanBackend::configure called before loadScene");
+  }
+  uint32_t maxPaths = params.counts.w;
+  uint32_t maxGroups = context_->properties.limits.maxComputeWorkGroupCount[0];
+  if ((maxPaths + WP_WORKGROUP_SIZE - 1) / WP_WORKGROUP_SIZE > maxGroups) {
+    throw Error("--max-paths " + std::to_string(maxPaths) + " exceeds what this device dispatches at once (" +
+                std::to_string(uint64_t(maxGroups) * WP_WORKGROUP_SIZE) + "); lower it");
+  }
+  vkDeviceWaitIdle(context_->device);
+  VkDevice device = context_->device;
+  (void)device;
+  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  std::memcpy(params_.mapped(), &params, sizeof(params));
+
+  bool resized = rays_.handle() == VK_NULL_HANDLE || hits_.size() < maxPaths * sizeof(gpu::HitRecord);
+  if (resized) {
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    rays_ = VulkanBuffer(*context_, 2ull * maxPaths * sizeof(gpu::PathRay), storage, false);
+    hits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::HitRecord), storage, false);
+    shadowRays_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::ShadowRay), storage, false);
+    pathRadiance_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(glm::vec4), storage, false);
+    counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
+                             storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
+  }
+  pixelCount_ = params.image.z;
+  accumulation_ = VulkanBuffer(*context_, 2ull * pixelCount_ * sizeof(glm::vec4),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  context_->runOnce([&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
+  });
+  writeDescriptors();
+}
+
+void VulkanBackend::writeDescriptors() {
+  std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers = {
+      &params_,     &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3],
+      &sceneBuffers_[4], &sceneBuffers_[5], &rays_,     &hits_,            &shadowRays_,
+      &pathRadiance_, &counters_,       &accumulation_};
+  std::array<VkDescriptorBufferInfo, WP_BINDING_COUNT> infos;
+  std::array<VkWriteDescriptorSet, WP_BINDING_COUNT> writes;
+  for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
+    infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = descriptorSet_;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType =
+        i == WP_BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(context_->device, WP_BINDING_COUNT, writes.data(), 0, nullptr);
+}
+
+void VulkanBackend::barrier(VkPipelineStageFlags dstStages, VkAccessFlags dstAccess) {
+  VkMemoryBarrier memoryBarrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  memoryBarrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  memoryBarrier.dstAccessMask = dstAccess;
+  vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, dstStages, 0, 1, &memoryBarrier, 0,
+                       nullptr, 0, nullptr);
+}
+
+void VulkanBackend::timestamp(int kernel) {
+  if (queryPool_ == VK_NULL_HANDLE || queryKernels_.size() >= kMaxQueries) {
+    return;
+  }
+  vkCmdWriteTimestamp(commandBuffer_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, queryPool_,
+                      static_cast<uint32_t>(queryKernels_.size()));
+  queryKernels_.push_back(kernel);
+}
+
+void VulkanBackend::beginPass() {
+  VK_CHECK(vkResetCommandBuffer(commandBuffer_, 0));
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(commandBuffer_, &begin));
+  // Order this pass after everything submitted before it (uploads, clears, earlier passes).
+  VkMemoryBarrier memoryBarrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  memoryBarrier.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  memoryBarrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+  vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1,
+                       &memoryBarrier, 0, nullptr, 0, nullptr);
+  vkCmdBindDescriptorSets(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &descriptorSet_, 0,
+                          nullptr);
+  queryKernels_.clear();
+  if (queryPool_ != VK_NULL_HANDLE) {
+    vkCmdResetQueryPool(commandBuffer_, queryPool_, 0, kMaxQueries);
+  }
+  timestamp(-1);
+  recordedDispatch_ = false;
+}
+
+void VulkanBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) {
+  if (recordedDispatch_) {
+    // Each stage reads what the previous ones wrote, including indirect dispatch sizes.
+    barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+  }
+  recordedDispatch_ = true;
+  int k = static_cast<int>(kernel);
+  vkCmdBindPipeline(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[k]);
+  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+  switch (size.source) {
+    case DispatchSize::Source::Host:
+      vkCmdDispatch(commandBuffer_, (size.threads + WP_WORKGROUP_SIZE - 1) / WP_WORKGROUP_SIZE, 1, 1);
+      break;
+    case DispatchSize::Source::RayQueue:
+      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), WP_COUNTER_EXTEND_DISPATCH * sizeof(uint32_t));
+      break;
+    case DispatchSize::Source::ShadowQueue:
+      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), WP_COUNTER_CONNECT_DISPATCH * sizeof(uint32_t));
+      break;
+  }
+  timestamp(k);
+}
+
+PassResult VulkanBackend::endPass() {
+  barrier(VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  VkBufferCopy region{0, 0, sizeof(gpu::QueueCounters)};
+  vkCmdCopyBuffer(commandBuffer_, counters_.handle(), countersReadback_.handle(), 1, &region);
+  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(commandBuffer_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0,
+                       nullptr, 0, nullptr);
+  VK_CHECK(vkEndCommandBuffer(commandBuffer_));
+
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &commandBuffer_;
+  VK_CHECK(vkResetFences(context_->device, 1, &fence_));
+  VK_CHECK(vkQueueSubmit(context_->queue, 1, &submit, fence_));
+  VK_CHECK(vkWaitForFences(context_->device, 1, &fence_, VK_TRUE, UINT64_MAX));
+
+  gpu::QueueCounters counters;
+  std::memcpy(&counters, countersReadback_.mapped(), sizeof(counters));
+  PassResult result;
+  result.extensionRays = counters.totals.x;
+  result.shadowRays = counters.totals.y;
+  if (queryPool_ != VK_NULL_HANDLE && queryKernels_.size() > 1) {
+    std::vector<uint64_t> ticks(queryKernels_.size());
+    VK_CHECK(vkGetQueryPoolResults(context_->device, queryPool_, 0, static_cast<uint32_t>(ticks.size()),
+                                   ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    double msPerTick = context_->properties.limits.timestampPeriod * 1e-6;
+    for (size_t i = 1; i < ticks.size(); ++i) {
+      result.kernelMs[queryKernels_[i]] += double(ticks[i] - ticks[i - 1]) * msPerTick;
+    }
+  }
+  return result;
+}
+
+Accumulation VulkanBackend::readAccumulation() {
+  Accumulation result;
+  std::vector<glm::vec4> both(2ull * pixelCount_);
+  accumulation_.download(both.data(), both.size() * sizeof(glm::vec4));
+  result.sum.assign(both.begin(), both.begin() + pixelCount_);
+  result.sumSquares.assign(both.begin() + pixelCount_, both.end());
+  return result;
+}
+
+}  // namespace wp

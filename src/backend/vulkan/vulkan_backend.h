@@ -1,0 +1,62 @@
+// The Vulkan implementation of the wavefront Backend: one compute pipeline per stage,
+// a sample pass recorded into one command buffer with indirect dispatches.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "backend/vulkan/vulkan_buffer.h"
+#include "backend/vulkan/vulkan_context.h"
+#include "render/backend.h"
+
+namespace wp {
+
+class VulkanBackend final : public Backend {
+public:
+  // deviceIndex < 0 picks the best device; see VulkanContext for `validation`.
+  VulkanBackend(int deviceIndex, bool validation);
+  ~VulkanBackend() override;
+
+  std::string deviceName() const override;
+  void loadScene(const GpuScene& scene) override;
+  void configure(const gpu::RenderParams& params) override;
+  void beginPass() override;
+  void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
+  PassResult endPass() override;
+  Accumulation readAccumulation() override;
+
+private:
+  void createPipelines();
+  void writeDescriptors();
+  void barrier(VkPipelineStageFlags dstStages, VkAccessFlags dstAccess);
+  void timestamp(int kernel);
+
+  std::unique_ptr<VulkanContext> context_;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  std::array<VkPipeline, kKernelCount> pipelines_{};
+  VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+  VkDescriptorSet descriptorSet_ = VK_NULL_HANDLE;
+  VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkQueryPool queryPool_ = VK_NULL_HANDLE;
+
+  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
+  std::array<VulkanBuffer, 6> sceneBuffers_;
+  VulkanBuffer params_;
+  VulkanBuffer rays_;
+  VulkanBuffer hits_;
+  VulkanBuffer shadowRays_;
+  VulkanBuffer pathRadiance_;
+  VulkanBuffer counters_;
+  VulkanBuffer countersReadback_;
+  VulkanBuffer accumulation_;
+  uint32_t pixelCount_ = 0;
+
+  // Kernel of each timestamp written in the current pass (query i ends kernel i's span).
+  std::vector<int> queryKernels_;
+  bool recordedDispatch_ = false;
+};
+
+}  // namespace wp

@@ -1,0 +1,107 @@
+// Vulkan buffers and staging copies.
+#include "backend/vulkan/vulkan_buffer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <utility>
+
+#include "backend/vulkan/vk_check.h"
+#include "backend/vulkan/vulkan_context.h"
+
+namespace wp {
+
+VulkanBuffer::VulkanBuffer(VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible)
+    : context_(&context), size_(std::max<VkDeviceSize>(size, 16)) {
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size_;
+  info.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VK_CHECK(vkCreateBuffer(context.device, &info, nullptr, &buffer_));
+
+  VkMemoryRequirements requirements;
+  vkGetBufferMemoryRequirements(context.device, buffer_, &requirements);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = requirements.size;
+  alloc.memoryTypeIndex =
+      hostVisible ? context.memoryType(requirements.memoryTypeBits,
+                                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                       VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
+                  : context.memoryType(requirements.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkResult result = vkAllocateMemory(context.device, &alloc, nullptr, &memory_);
+  if (result != VK_SUCCESS) {
+    release();
+    VK_CHECK(result);
+  }
+  VK_CHECK(vkBindBufferMemory(context.device, buffer_, memory_, 0));
+  if (hostVisible) {
+    VK_CHECK(vkMapMemory(context.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  }
+}
+
+VulkanBuffer::~VulkanBuffer() { release(); }
+
+VulkanBuffer::VulkanBuffer(VulkanBuffer&& other) noexcept { *this = std::move(other); }
+
+VulkanBuffer& VulkanBuffer::operator=(VulkanBuffer&& other) noexcept {
+  if (this != &other) {
+    release();
+    context_ = std::exchange(other.context_, nullptr);
+    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    size_ = std::exchange(other.size_, 0);
+    mapped_ = std::exchange(other.mapped_, nullptr);
+  }
+  return *this;
+}
+
+void VulkanBuffer::release() {
+  if (context_ == nullptr) {
+    return;
+  }
+  if (buffer_ != VK_NULL_HANDLE) {
+    vkDestroyBuffer(context_->device, buffer_, nullptr);
+  }
+  if (memory_ != VK_NULL_HANDLE) {
+    vkFreeMemory(context_->device, memory_, nullptr);
+  }
+  buffer_ = VK_NULL_HANDLE;
+  memory_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
+}
+
+void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {
+  if (bytes == 0) {
+    return;
+  }
+  VulkanBuffer staging(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+  std::memcpy(staging.mapped(), data, bytes);
+  context_->runOnce([&](VkCommandBuffer cmd) {
+    VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, staging.handle(), buffer_, 1, &region);
+  });
+}
+
+void VulkanBuffer::download(void* data, VkDeviceSize bytes) {
+  if (bytes == 0) {
+    return;
+  }
+  VulkanBuffer staging(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  context_->runOnce([&](VkCommandBuffer cmd) {
+    // Make every earlier shader write visible to the copy.
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+    VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, buffer_, staging.handle(), 1, &region);
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
+                         0, nullptr);
+  });
+  std::memcpy(data, staging.mapped(), bytes);
+}
+
+}  // namespace wp

@@ -1,0 +1,66 @@
+// Vulkan instance, device and compute queue, with the validation layer on request.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <volk.h>
+
+namespace wp {
+
+struct VulkanDeviceInfo {
+  std::string name;
+  std::string type;    // "discrete GPU", "integrated GPU", "CPU", ...
+  std::string driver;  // driver name and version text
+  uint32_t apiVersion = 0;
+  uint64_t deviceLocalBytes = 0;
+};
+
+// Lists every Vulkan device; throws wp::Error when there is no loader or no device.
+std::vector<VulkanDeviceInfo> listVulkanDevices();
+
+class VulkanContext {
+public:
+  // deviceIndex < 0 picks the most capable device (discrete, then integrated, virtual, CPU).
+  // With `validation`, the Khronos validation layer runs with synchronization validation and
+  // every message it reports is printed and counted (see validationErrorCount).
+  VulkanContext(int deviceIndex, bool validation);
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  // Index of a memory type allowed by typeBits that has all `required` flags; prefers one
+  // that also has `preferred`. Throws when none exists.
+  uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred = 0) const;
+
+  // Records commands with `record` into a one-time command buffer, submits it and waits.
+  template <typename Record>
+  void runOnce(Record&& record) {
+    VkCommandBuffer cmd = beginOnce();
+    record(cmd);
+    endOnce(cmd);
+  }
+
+  // Messages of severity error reported by the validation layer so far (all contexts).
+  static uint32_t validationErrorCount();
+
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  VkCommandPool commandPool = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties{};
+  VkPhysicalDeviceMemoryProperties memoryProperties{};
+  bool timestampsSupported = false;
+
+private:
+  void destroy();
+  VkCommandBuffer beginOnce();
+  void endOnce(VkCommandBuffer cmd);
+
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+};
+
+}  // namespace wp

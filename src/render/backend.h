@@ -1,0 +1,64 @@
+// The execution interface the wavefront integrator drives. Vulkan and OpenCL implement it;
+// the stage order lives above it (src/render/wavefront.cpp), written once.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shaders/common/layout.h"
+
+namespace wp {
+
+struct GpuScene;
+
+enum class Kernel { Generate, Extend, Shade, Advance, Connect, Accumulate };
+inline constexpr int kKernelCount = 6;
+const char* kernelName(Kernel kernel);
+
+// How many threads a dispatch runs: a count the host knows, or the length of a queue the
+// GPU wrote into the counters (Vulkan: indirect dispatch).
+struct DispatchSize {
+  enum class Source { Host, RayQueue, ShadowQueue };
+  Source source = Source::Host;
+  uint32_t threads = 0;
+
+  static DispatchSize fixed(uint32_t threads) { return {Source::Host, threads}; }
+  static DispatchSize rayQueue() { return {Source::RayQueue, 0}; }
+  static DispatchSize shadowQueue() { return {Source::ShadowQueue, 0}; }
+};
+
+struct PassResult {
+  uint64_t extensionRays = 0;
+  uint64_t shadowRays = 0;
+  std::array<double, kKernelCount> kernelMs{};  // GPU time per kernel; zeros if unsupported
+};
+
+// Running per-pixel sums of radiance and of its square over all samples so far.
+struct Accumulation {
+  std::vector<glm::vec4> sum;
+  std::vector<glm::vec4> sumSquares;
+};
+
+class Backend {
+public:
+  virtual ~Backend() = default;
+
+  virtual std::string deviceName() const = 0;
+  // Uploads the scene. Call before configure; may be called again to replace the scene.
+  virtual void loadScene(const GpuScene& scene) = 0;
+  // Sets the render parameters and sizes path state for params.counts.w paths and the
+  // accumulation for params.image.z pixels; clears the accumulation.
+  virtual void configure(const gpu::RenderParams& params) = 0;
+  // Starts recording a sample pass; dispatches run in order, each after the previous one.
+  virtual void beginPass() = 0;
+  virtual void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) = 0;
+  // Runs the recorded pass and waits for it.
+  virtual PassResult endPass() = 0;
+  virtual Accumulation readAccumulation() = 0;
+};
+
+}  // namespace wp

@@ -1,0 +1,27 @@
+// Render settings: everything a user can choose about one render, in one place.
+#pragma once
+
+#include <cstdint>
+
+namespace wp {
+
+enum class IntegratorMode { Mis, NeeOnly, BsdfOnly };
+
+struct RenderSettings {
+  uint32_t width = 512;
+  uint32_t height = 512;
+  uint32_t samplesPerPixel = 64;
+  // Cycles' "max bounces": 0 is direct light only; a path has at most maxBounces + 2
+  // segments (camera ray, maxBounces bounces, and the segment that reaches the light).
+  uint32_t maxBounces = 8;
+  uint32_t seed = 0;
+  IntegratorMode mode = IntegratorMode::Mis;
+  // First bounce at which Russian roulette may end a path. Short paths carry most of the
+  // image's energy, and ending them early adds variance for little saved work.
+  uint32_t russianRouletteStart = 3;
+  // Paths in flight per sample pass: bounds GPU memory (about 200 bytes a path) whatever
+  // the image size.
+  uint32_t maxPaths = 1u << 20;
+};
+
+}  // namespace wp

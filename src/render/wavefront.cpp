@@ -1,0 +1,115 @@
+// Sample passes of the wavefront path tracer: generate, then per bounce extend, shade,
+// advance (GPU-written dispatch sizes) and connect, then accumulate.
+#include "render/wavefront.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "bvh/gpu_scene.h"
+#include "scene/scene.h"
+
+namespace wp {
+
+gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings) {
+  const Camera& camera = scene.camera;
+  float tanHalf = std::tan(camera.yfov * 0.5f);
+  float aspect = float(settings.width) / float(settings.height);
+  glm::vec3 right = glm::normalize(glm::cross(camera.forward, camera.up));
+  glm::vec3 up = glm::normalize(glm::cross(right, camera.forward));
+
+  gpu::RenderParams p{};
+  p.cameraPosition = glm::vec4(camera.position, 0.0f);
+  p.cameraRight = glm::vec4(right * (tanHalf * aspect), 0.0f);
+  p.cameraUp = glm::vec4(up * tanHalf, 0.0f);
+  p.cameraForward = glm::vec4(glm::normalize(camera.forward), 0.0f);
+  p.skyRadiance = glm::vec4(scene.skyRadiance, 0.0f);
+  uint32_t pixels = settings.width * settings.height;
+  p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);
+  uint32_t mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
+                  : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
+                                                             : WP_MODE_BSDF;
+  p.mode = glm::uvec4(settings.maxBounces, mode, settings.russianRouletteStart, uint32_t(gpuScene.lights.size()));
+  uint64_t totalPaths = uint64_t(pixels) * settings.samplesPerPixel;
+  uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
+  p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, uint32_t(gpuScene.instances.size()),
+                        maxPaths);
+  return p;
+}
+
+WavefrontRenderer::WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene,
+                                     const RenderSettings& settings)
+    : backend_(backend), settings_(settings), params_(makeRenderParams(scene, gpuScene, settings)) {
+  backend_.loadScene(gpuScene);
+  backend_.configure(params_);
+}
+
+void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats) {
+  auto constants = [&](uint32_t bounce) {
+    gpu::PassConstants c;
+    c.pass = glm::uvec4(firstPixel, firstSample, pathCount, bounce);
+    return c;
+  };
+  backend_.beginPass();
+  backend_.dispatch(Kernel::Generate, constants(0), DispatchSize::fixed(pathCount));
+  // Vertices of bounce 0 .. maxBounces scatter; the rays they spawn reach bounce
+  // maxBounces + 1, where only emission is gathered.
+  for (uint32_t bounce = 0; bounce <= settings_.maxBounces + 1; ++bounce) {
+    backend_.dispatch(Kernel::Extend, constants(bounce), DispatchSize::rayQueue());
+    backend_.dispatch(Kernel::Shade, constants(bounce), DispatchSize::rayQueue());
+    backend_.dispatch(Kernel::Advance, constants(bounce), DispatchSize::fixed(1));
+    backend_.dispatch(Kernel::Connect, constants(bounce), DispatchSize::shadowQueue());
+  }
+  uint32_t pixels = params_.image.z;
+  backend_.dispatch(Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels)));
+  PassResult result = backend_.endPass();
+  stats.extensionRays += result.extensionRays;
+  stats.shadowRays += result.shadowRays;
+  for (int k = 0; k < kKernelCount; ++k) {
+    stats.kernelMs[k] += result.kernelMs[k];
+  }
+  ++stats.passes;
+}
+
+RenderStats WavefrontRenderer::render(const std::function<void(double)>& progress) {
+  RenderStats stats;
+  auto start = std::chrono::steady_clock::now();
+  const uint64_t pixels = params_.image.z;
+  const uint64_t total = pixels * settings_.samplesPerPixel;
+  const uint64_t base = pixels * samplesDone_;
+  for (uint64_t done = 0; done < total;) {
+    uint32_t count = uint32_t(std::min<uint64_t>(params_.counts.w, total - done));
+    uint64_t linear = base + done;
+    runPass(uint32_t(linear % pixels), uint32_t(linear / pixels), count, stats);
+    done += count;
+    if (progress) {
+      progress(double(done) / double(total));
+    }
+  }
+  samplesDone_ += settings_.samplesPerPixel;
+  stats.samples = total;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+RadianceImage WavefrontRenderer::image() {
+  Accumulation acc = backend_.readAccumulation();
+  RadianceImage image;
+  image.width = settings_.width;
+  image.height = settings_.height;
+  size_t pixels = size_t(image.width) * image.height;
+  image.mean.resize(pixels);
+  image.variance.resize(pixels);
+  double n = std::max<uint32_t>(samplesDone_, 1);
+  for (size_t i = 0; i < pixels; ++i) {
+    glm::vec3 mean = glm::vec3(acc.sum[i]) / float(n);
+    glm::vec3 meanSquare = glm::vec3(acc.sumSquares[i]) / float(n);
+    // Unbiased sample variance, divided by n: the variance of the pixel's mean estimate.
+    glm::vec3 sampleVariance = n > 1 ? glm::max(meanSquare - mean * mean, glm::vec3(0.0f)) * float(n / (n - 1)) : glm::vec3(0.0f);
+    image.mean[i] = mean;
+    image.variance[i] = sampleVariance / float(n);
+  }
+  return image;
+}
+
+}  // namespace wp

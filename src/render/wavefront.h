@@ -1,0 +1,51 @@
+// The wavefront integrator's orchestration: the order of the stages within a sample pass,
+// and the passes that make a render. Written once above the Backend interface.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+
+#include "image/image_io.h"
+#include "render/backend.h"
+#include "render/settings.h"
+
+namespace wp {
+
+struct Scene;
+struct GpuScene;
+
+struct RenderStats {
+  double seconds = 0.0;
+  uint64_t samples = 0;  // camera paths traced
+  uint64_t extensionRays = 0;
+  uint64_t shadowRays = 0;
+  uint32_t passes = 0;
+  std::array<double, kKernelCount> kernelMs{};  // summed over passes
+};
+
+// The GPU-side parameters of a render of `scene` (camera, image, integrator switches).
+gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
+
+class WavefrontRenderer {
+public:
+  // Loads the scene into `backend` and configures it for `settings`.
+  WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
+
+  // Traces samplesPerPixel samples of every pixel, calling progress(fraction) after each
+  // pass. Accumulates onto earlier calls' samples.
+  RenderStats render(const std::function<void(double)>& progress);
+
+  // Per-pixel mean radiance and the variance of that mean, from the samples so far.
+  RadianceImage image();
+
+private:
+  void runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats);
+
+  Backend& backend_;
+  RenderSettings settings_;
+  gpu::RenderParams params_;
+  uint32_t samplesDone_ = 0;
+};
+
+}  // namespace wp
