@@ -1,0 +1,260 @@
+// PNG and EXR output written atomically, and EXR input, through stb_image_write and tinyexr.
+#include "image/image_io.h"
+
+#include <fcntl.h>
+#include <stb_image_write.h>
+#include <tinyexr.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "shaders/common/tonemap.h"
+
+namespace wp {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+fs::path directoryOf(const fs::path& path) { return path.has_parent_path() ? path.parent_path() : fs::path("."); }
+
+[[noreturn]] void failWrite(const fs::path& path, const std::string& reason) {
+  throw Error("cannot write image '" + path.string() + "': " + reason);
+}
+
+[[noreturn]] void failRead(const fs::path& path, const std::string& reason) {
+  throw Error("cannot read EXR '" + path.string() + "': " + reason);
+}
+
+// Closes and removes the temporary file unless the write succeeded and renamed it into place.
+struct TempFileGuard {
+  fs::path path;
+  int fd = -1;
+  bool renamed = false;
+  ~TempFileGuard() {
+    if (fd >= 0) ::close(fd);
+    if (!renamed) ::unlink(path.c_str());
+  }
+};
+
+std::string systemError(int error) { return std::strerror(error); }
+
+// Writes `bytes` to a uniquely named hidden file beside `path`, flushes it to disk and
+// renames it over `path`: rename is atomic within a directory, so readers (and a crash) see
+// either the old file or the complete new one, never a partial image.
+void writeFileAtomically(const fs::path& path, const std::vector<unsigned char>& bytes) {
+  static std::atomic<unsigned> counter{0};
+  std::string tempName = ".";  // hidden; appended piecewise to dodge a GCC 12 -Wrestrict false positive
+  tempName += path.filename().string();
+  tempName += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  fs::path tempPath = directoryOf(path) / tempName;
+  int fd = ::open(tempPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) failWrite(path, systemError(errno) + "; check the directory's permissions and free space");
+  TempFileGuard temp{tempPath, fd};
+  size_t written = 0;
+  while (written < bytes.size()) {
+    ssize_t n = ::write(temp.fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) failWrite(path, systemError(errno) + "; check free space and try again");
+    written += static_cast<size_t>(n);
+  }
+  int syncError = ::fsync(temp.fd) == 0 ? 0 : errno;
+  int closeError = ::close(temp.fd) == 0 ? 0 : errno;
+  temp.fd = -1;
+  if (syncError || closeError)
+    failWrite(path, systemError(syncError ? syncError : closeError) + "; check free space and try again");
+  if (::rename(temp.path.c_str(), path.c_str()) != 0)
+    failWrite(path, systemError(errno) + "; check the output path");
+  temp.renamed = true;
+}
+
+void checkImageShape(const fs::path& path, const RadianceImage& image) {
+  size_t pixels = size_t(image.width) * image.height;
+  if (image.width == 0 || image.height == 0 || image.mean.size() != pixels ||
+      (!image.variance.empty() && image.variance.size() != pixels))
+    failWrite(path, "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) + " but has " +
+                        std::to_string(image.mean.size()) + " means and " + std::to_string(image.variance.size()) +
+                        " variances (a bug in the caller)");
+  if (image.width > uint32_t(std::numeric_limits<int>::max() / 4) ||
+      image.height > uint32_t(std::numeric_limits<int>::max()))
+    failWrite(path, "image is too large for the PNG and EXR writers; render fewer pixels");
+}
+
+std::vector<unsigned char> encodePng(const RadianceImage& image) {
+  std::vector<unsigned char> rgb(size_t(image.width) * image.height * 3);
+  for (size_t i = 0; i < image.mean.size(); ++i) {
+    uint32_t packed = gpu::packSrgba8(image.mean[i]);
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = static_cast<unsigned char>(packed >> (8 * c));
+  }
+  std::vector<unsigned char> png;
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+  };
+  int w = int(image.width), h = int(image.height);
+  if (!stbi_write_png_to_func(append, &png, w, h, 3, rgb.data(), w * 3)) png.clear();
+  return png;
+}
+
+// Frees what tinyexr allocated in a header and an image, on every exit path.
+struct ExrHandles {
+  EXRHeader header;
+  EXRImage image;
+  ExrHandles() {
+    InitEXRHeader(&header);
+    InitEXRImage(&image);
+  }
+  ~ExrHandles() {
+    FreeEXRImage(&image);
+    FreeEXRHeader(&header);
+  }
+  ExrHandles(const ExrHandles&) = delete;
+  ExrHandles& operator=(const ExrHandles&) = delete;
+};
+
+std::string takeExrMessage(const char* err) {
+  std::string message = err ? err : "unknown tinyexr error";
+  if (err) FreeEXRErrorMessage(err);
+  while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  return message;
+}
+
+std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& image) {
+  // OpenEXR wants channels sorted by name; planar float arrays in that order.
+  const char* names[] = {"B", "G", "R", "variance.B", "variance.G", "variance.R"};
+  const int sources[] = {2, 1, 0, 2, 1, 0};
+  int channelCount = image.variance.empty() ? 3 : 6;
+  size_t pixels = image.mean.size();
+  std::vector<std::vector<float>> planes(channelCount, std::vector<float>(pixels));
+  for (int c = 0; c < channelCount; ++c) {
+    const std::vector<glm::vec3>& from = c < 3 ? image.mean : image.variance;
+    for (size_t i = 0; i < pixels; ++i) planes[c][i] = from[i][sources[c]];
+  }
+  std::vector<unsigned char*> planePointers(channelCount);
+  std::vector<EXRChannelInfo> channels(channelCount);
+  std::vector<int> pixelTypes(channelCount, TINYEXR_PIXELTYPE_FLOAT);
+  for (int c = 0; c < channelCount; ++c) {
+    planePointers[c] = reinterpret_cast<unsigned char*>(planes[c].data());
+    std::memset(&channels[c], 0, sizeof(EXRChannelInfo));
+    std::strncpy(channels[c].name, names[c], sizeof(channels[c].name) - 1);
+  }
+
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.num_channels = channelCount;
+  header.channels = channels.data();
+  header.pixel_types = pixelTypes.data();
+  header.requested_pixel_types = pixelTypes.data();
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+  EXRImage exrImage;
+  InitEXRImage(&exrImage);
+  exrImage.images = planePointers.data();
+  exrImage.width = int(image.width);
+  exrImage.height = int(image.height);
+  exrImage.num_channels = channelCount;
+
+  unsigned char* memory = nullptr;
+  const char* err = nullptr;
+  size_t size = SaveEXRImageToMemory(&exrImage, &header, &memory, &err);
+  if (size == 0) failWrite(path, "EXR encoding failed (" + takeExrMessage(err) + ")");
+  std::vector<unsigned char> bytes(memory, memory + size);
+  std::free(memory);
+  return bytes;
+}
+
+int findChannel(const EXRHeader& header, const char* name) {
+  for (int c = 0; c < header.num_channels; ++c)
+    if (std::strcmp(header.channels[c].name, name) == 0) return c;
+  return -1;
+}
+
+}  // namespace
+
+void checkOutputPath(const fs::path& path) {
+  std::string ext = lowerExtension(path);
+  if (ext != ".png" && ext != ".exr")
+    failWrite(path, "unsupported extension '" + path.extension().string() +
+                        "'; name the output *.png (8-bit sRGB) or *.exr (linear float)");
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) failWrite(path, "it is a directory; give a file name ending in .png or .exr");
+  fs::path dir = directoryOf(path);
+  if (!fs::is_directory(dir, ec))
+    failWrite(path, "directory '" + dir.string() + "' does not exist; create it or choose another output path");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    failWrite(path,
+              "directory '" + dir.string() + "' is not writable; fix its permissions or choose another path");
+}
+
+void writeImage(const fs::path& path, const RadianceImage& image) {
+  checkOutputPath(path);
+  checkImageShape(path, image);
+  std::vector<unsigned char> bytes;
+  if (lowerExtension(path) == ".png") {
+    bytes = encodePng(image);
+    if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); render a smaller image");
+  } else {
+    bytes = encodeExr(path, image);
+  }
+  writeFileAtomically(path, bytes);
+}
+
+RadianceImage readExr(const fs::path& path) {
+  EXRVersion version;
+  if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS)
+    failRead(path, "missing, unreadable or not an OpenEXR file; check the path");
+  if (version.multipart || version.non_image || version.tiled)
+    failRead(path,
+             "multi-part, deep and tiled EXR files are not supported; save it as a single-part scanline EXR");
+
+  ExrHandles exr;
+  const char* err = nullptr;
+  if (ParseEXRHeaderFromFile(&exr.header, &version, path.c_str(), &err) != TINYEXR_SUCCESS)
+    failRead(path, takeExrMessage(err) + "; check that the file is intact");
+  const char* names[] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  int index[6];
+  for (int c = 0; c < 6; ++c) index[c] = findChannel(exr.header, names[c]);
+  if (index[0] < 0 || index[1] < 0 || index[2] < 0)
+    failRead(path, "it has no R, G and B channels; save the radiance as RGB");
+  bool hasVariance = index[3] >= 0 && index[4] >= 0 && index[5] >= 0;
+  for (int c = 0; c < exr.header.num_channels; ++c) {
+    if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
+      exr.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  }
+  for (int c = 0; c < (hasVariance ? 6 : 3); ++c) {
+    if (exr.header.pixel_types[index[c]] == TINYEXR_PIXELTYPE_UINT)
+      failRead(path,
+               std::string("channel ") + names[c] + " holds integers, not radiance; save it as half or float");
+  }
+  if (LoadEXRImageFromFile(&exr.image, &exr.header, path.c_str(), &err) != TINYEXR_SUCCESS)
+    failRead(path, takeExrMessage(err) + "; check that the file is intact");
+
+  RadianceImage result;
+  result.width = uint32_t(exr.image.width);
+  result.height = uint32_t(exr.image.height);
+  size_t pixels = size_t(result.width) * result.height;
+  auto channel = [&](int c) { return reinterpret_cast<const float*>(exr.image.images[index[c]]); };
+  result.mean.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) result.mean[i] = glm::vec3(channel(0)[i], channel(1)[i], channel(2)[i]);
+  if (hasVariance) {
+    result.variance.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i)
+      result.variance[i] = glm::vec3(channel(3)[i], channel(4)[i], channel(5)[i]);
+  }
+  return result;
+}
+
+}  // namespace wp
