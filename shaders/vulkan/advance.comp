@@ -8,6 +8,10 @@
 uint groupsFor(uint n) { return (n + WP_WORKGROUP_SIZE - 1u) / WP_WORKGROUP_SIZE; }
 
 void main() {
+  // The dispatch is one workgroup; a single invocation must do the read-modify-writes.
+  if (gl_GlobalInvocationID.x != 0u) {
+    return;
+  }
   uint queue = bounceParity();
   uint traced = counters[WP_COUNTER_RAYS + queue];
   uint nextRays = counters[WP_COUNTER_RAYS + 1u - queue];

@@ -14,6 +14,9 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586;
 constexpr double kEpsilon = 1e-15;
 constexpr int kMaxIterations = 1000000;
+// Absolute error allowed per row of a cell (in probability), and the deepest subdivision.
+constexpr double kSimpsonTolerance = 1e-10;
+constexpr int kSimpsonDepth = 24;
 
 // exp(-x) x^a / Gamma(a): the factor shared by the series and the continued fraction.
 double gammaPrefactor(double a, double x) { return std::exp(-x + a * std::log(x) - std::lgamma(a)); }
@@ -140,30 +143,78 @@ std::vector<double> SphereBinning::histogram(const std::vector<glm::dvec3>& dire
   return counts;
 }
 
-double SphereBinning::integrate(const std::function<double(glm::dvec3)>& pdf, double cosTheta0, double cosTheta1,
-                                double phi0, double phi1, int resolution) const {
-  // Solid angle is dcos(theta) dphi, so the midpoint rule needs no Jacobian.
+std::vector<std::pair<double, double>> SphereBinning::supportArcs(double cosTheta, double phi0, double phi1,
+                                                                   const std::vector<glm::dvec3>& support) const {
+  // On the circle of constant cos(theta), dot(d, h) = r cos(phi - phiH) + c, so each
+  // half-space keeps one arc of phi, which is intersected with what is left.
+  double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+  std::vector<std::pair<double, double>> arcs = {{phi0, phi1}};
+  for (glm::dvec3 h : support) {
+    double ht = glm::dot(h, tangent_), hb = glm::dot(h, bitangent_);
+    double r = sinTheta * std::sqrt(ht * ht + hb * hb), c = cosTheta * glm::dot(h, axis_);
+    if (r <= std::fabs(c)) {
+      if (c < 0.0) arcs.clear();
+      continue;
+    }
+    double halfWidth = std::acos(std::clamp(-c / r, -1.0, 1.0)), center = std::atan2(hb, ht);
+    std::vector<std::pair<double, double>> kept;
+    for (auto [lo, hi] : arcs)
+      for (int k = -1; k <= 1; ++k) {
+        double a = std::max(lo, center - halfWidth + k * kTwoPi), b = std::min(hi, center + halfWidth + k * kTwoPi);
+        if (a < b) kept.emplace_back(a, b);
+      }
+    arcs = std::move(kept);
+  }
+  return arcs;
+}
+
+double SphereBinning::ring(const Integrand& f, double cosTheta, double phi0, double phi1) const {
+  double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
   double sum = 0.0;
-  for (int i = 0; i < resolution; ++i) {
-    double cosTheta = cosTheta0 + (i + 0.5) / resolution * (cosTheta1 - cosTheta0);
-    double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-    for (int j = 0; j < resolution; ++j) {
-      double phi = phi0 + (j + 0.5) / resolution * (phi1 - phi0);
-      sum += pdf(sinTheta * (std::cos(phi) * tangent_ + std::sin(phi) * bitangent_) + cosTheta * axis_);
+  for (auto [lo, hi] : supportArcs(cosTheta, phi0, phi1, f.support)) {
+    double step = (hi - lo) / f.resolution;
+    for (int j = 0; j < f.resolution; ++j) {
+      double phi = lo + (j + 0.5) * step;
+      sum += f.pdf(sinTheta * (std::cos(phi) * tangent_ + std::sin(phi) * bitangent_) + cosTheta * axis_) * step;
     }
   }
-  return sum * (cosTheta1 - cosTheta0) * (phi1 - phi0) / (double(resolution) * resolution);
+  return sum;
+}
+
+double SphereBinning::adaptiveSimpson(const Integrand& f, double phi0, double phi1, double a, double b, double fa,
+                                      double fm, double fb, double whole, double tolerance, int depth) const {
+  double m = 0.5 * (a + b);
+  double flm = ring(f, 0.5 * (a + m), phi0, phi1), frm = ring(f, 0.5 * (m + b), phi0, phi1);
+  double left = (m - a) / 6.0 * (fa + 4.0 * flm + fm), right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+  double delta = left + right - whole;
+  if (depth == 0 || std::fabs(delta) <= 15.0 * tolerance) return left + right + delta / 15.0;
+  return adaptiveSimpson(f, phi0, phi1, a, m, fa, flm, fm, left, 0.5 * tolerance, depth - 1) +
+         adaptiveSimpson(f, phi0, phi1, m, b, fm, frm, fb, right, 0.5 * tolerance, depth - 1);
+}
+
+double SphereBinning::integrate(const Integrand& f, double cosTheta0, double cosTheta1, double phi0, double phi1) const {
+  // Solid angle is dcos(theta) dphi, so neither rule needs a Jacobian.
+  double rowHeight = (cosTheta1 - cosTheta0) / f.resolution;
+  double sum = 0.0;
+  for (int i = 0; i < f.resolution; ++i) {
+    double a = cosTheta0 + i * rowHeight, b = a + rowHeight;
+    double fa = ring(f, a, phi0, phi1), fm = ring(f, 0.5 * (a + b), phi0, phi1), fb = ring(f, b, phi0, phi1);
+    double whole = rowHeight / 6.0 * (fa + 4.0 * fm + fb);
+    sum += adaptiveSimpson(f, phi0, phi1, a, b, fa, fm, fb, whole, kSimpsonTolerance, kSimpsonDepth);
+  }
+  return sum;
 }
 
 std::vector<double> SphereBinning::expectedCounts(const std::function<double(glm::dvec3)>& pdf, double sampleCount,
-                                                  int resolution) const {
+                                                  int resolution, const std::vector<glm::dvec3>& support) const {
+  Integrand f{pdf, resolution, support};
   double cellHeight = (1.0 - cosThetaMin_) / cosThetaBins_, cellWidth = kTwoPi / phiBins_;
   std::vector<double> counts(cellCount(), 0.0);
   for (int row = 0; row < cosThetaBins_; ++row)
     for (int column = 0; column < phiBins_; ++column) {
       double cosTheta0 = cosThetaMin_ + row * cellHeight, phi0 = column * cellWidth;
       counts[row * phiBins_ + column] =
-          sampleCount * integrate(pdf, cosTheta0, cosTheta0 + cellHeight, phi0, phi0 + cellWidth, resolution);
+          sampleCount * integrate(f, cosTheta0, cosTheta0 + cellHeight, phi0, phi0 + cellWidth);
     }
   // The outside of a cap is integrated on a grid as fine as the inside, so a pdf that is 0
   // there expects exactly 0 samples.
@@ -172,8 +223,7 @@ std::vector<double> SphereBinning::expectedCounts(const std::function<double(glm
     for (int row = 0; row < cosThetaBins_; ++row)
       for (int column = 0; column < phiBins_; ++column) {
         double cosTheta0 = -1.0 + row * outsideHeight, phi0 = column * cellWidth;
-        counts.back() +=
-            sampleCount * integrate(pdf, cosTheta0, cosTheta0 + outsideHeight, phi0, phi0 + cellWidth, resolution);
+        counts.back() += sampleCount * integrate(f, cosTheta0, cosTheta0 + outsideHeight, phi0, phi0 + cellWidth);
       }
   }
   return counts;

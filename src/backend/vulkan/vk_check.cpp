@@ -41,7 +41,7 @@ void check(VkResult result, const char* call, const char* file, int line) {
   }
   std::string hint = result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY
                          ? "; lower --max-paths or the image size"
-                     : result == VK_ERROR_DEVICE_LOST ? "; the GPU driver reset the device, try --backend opencl"
+                     : result == VK_ERROR_DEVICE_LOST ? "; the GPU driver reset the device"
                                                       : "; check the Vulkan driver installation";
   throw Error(std::string("Vulkan call ") + call + " failed with " + resultName(result) + " at " + file + ":" +
               std::to_string(line) + hint);

@@ -32,7 +32,7 @@ void initLoader() {
   }
   if (volkInitialize() != VK_SUCCESS) {
     throw Error("the Vulkan loader (libvulkan.so.1) was not found; install libvulkan1 and a driver "
-                "(mesa-vulkan-drivers for lavapipe), or use --backend opencl");
+                "(mesa-vulkan-drivers for lavapipe)");
   }
   loaded = true;
 }
@@ -82,7 +82,7 @@ VkInstance createInstance(bool validation) {
   VkResult result = vkCreateInstance(&info, nullptr, &instance);
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED) {
     throw Error("no Vulkan driver could be loaded (" + std::string(vk::resultName(result)) +
-                "); install mesa-vulkan-drivers (lavapipe) or a GPU driver, or use --backend opencl");
+                "); install mesa-vulkan-drivers (lavapipe) or a GPU driver");
   }
   VK_CHECK(result);
   volkLoadInstanceOnly(instance);
@@ -95,8 +95,7 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
   std::vector<VkPhysicalDevice> devices(count);
   VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
   if (devices.empty()) {
-    throw Error("no Vulkan device found; install mesa-vulkan-drivers (lavapipe) or a GPU driver, or use "
-                "--backend opencl");
+    throw Error("no Vulkan device found; install mesa-vulkan-drivers (lavapipe) or a GPU driver");
   }
   return devices;
 }
@@ -210,7 +209,7 @@ VulkanContext::VulkanContext(int deviceIndex, bool validation) {
     int family = computeQueueFamily(physicalDevice);
     if (family < 0 || properties.apiVersion < VK_API_VERSION_1_1) {
       throw Error(std::string("Vulkan device '") + properties.deviceName +
-                  "' lacks a compute queue or Vulkan 1.1; pick another with --device or use --backend opencl");
+                  "' lacks a compute queue or Vulkan 1.1; pick another with --device");
     }
     queueFamily = static_cast<uint32_t>(family);
 

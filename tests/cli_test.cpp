@@ -1,0 +1,185 @@
+// Bad input through the command line: each case must end with one clear error line, a
+// non-zero exit code and no output file; never a crash or a hang.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "support/gltf_writer.h"
+#include "support/run_wavepath.h"
+
+namespace wp::test {
+namespace {
+
+struct Outcome {
+  RunResult run;
+  std::filesystem::path output;
+};
+
+Outcome renderExpectingFailure(const std::filesystem::path& scene, std::vector<std::string> extra = {},
+                               std::vector<std::string> env = {}) {
+  Outcome o;
+  o.output = scratchDirectory("out") / "image.png";
+  std::vector<std::string> args = {"render", scene.string(), "-o", o.output.string(), "--width", "8", "--height", "8",
+                                   "--spp", "1"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  o.run = runWavepath(args, env, 120);
+  return o;
+}
+
+// One line on stderr, "wavepath: error: ...", containing `phrase`; exit code `code`.
+void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code = 1) {
+  EXPECT_EQ(r.exitCode, code) << r.err;
+  std::string lastLine = r.err;
+  while (!lastLine.empty() && lastLine.back() == '\n') {
+    lastLine.pop_back();
+  }
+  size_t nl = lastLine.rfind('\n');
+  lastLine = nl == std::string::npos ? lastLine : lastLine.substr(nl + 1);
+  EXPECT_EQ(lastLine.rfind("wavepath: error: ", 0), 0u) << r.err;
+  EXPECT_NE(lastLine.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line: " << r.err;
+}
+
+void writeText(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
+
+// One triangle (3 positions, 3 uint16 indices) as a glTF JSON text with the given pieces
+// swapped in, so each case differs from a valid file in exactly one way.
+std::string triangleGltf(const std::vector<glm::vec3>& positions, std::vector<uint16_t> indices,
+                         const std::string& nodes = "[{\"mesh\":0}]", const std::string& extra = "") {
+  std::vector<uint8_t> bytes(positions.size() * 12 + 8);
+  std::memcpy(bytes.data(), positions.data(), positions.size() * 12);
+  std::memcpy(bytes.data() + positions.size() * 12, indices.data(), 6);
+  return "{\"asset\":{\"version\":\"2.0\"}," + extra + "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":" +
+         nodes +
+         ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+         "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+         "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}],"
+         "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},"
+         "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+         "\"buffers\":[{\"byteLength\":" +
+         std::to_string(bytes.size()) + ",\"uri\":\"data:application/octet-stream;base64," + base64(bytes) + "\"}]}";
+}
+
+const std::vector<glm::vec3> kTriangle = {{0, 0, -1}, {1, 0, -1}, {0, 1, -1}};
+
+class BadScene : public ::testing::Test {
+protected:
+  std::filesystem::path dir = scratchDirectory("bad-scene");
+
+  void expectRejected(const std::string& name, const std::string& text, const std::string& phrase) {
+    std::filesystem::path file = dir / name;
+    writeText(file, text);
+    Outcome o = renderExpectingFailure(file);
+    expectOneErrorLine(o.run, phrase);
+    EXPECT_FALSE(std::filesystem::exists(o.output));
+  }
+};
+
+TEST_F(BadScene, ValidTriangleRenders) {
+  // The control case: the same file without the defect renders, so the failures below are
+  // caused by the defects.
+  std::filesystem::path file = dir / "ok.gltf";
+  writeText(file, triangleGltf(kTriangle, {0, 1, 2}));
+  std::filesystem::path out = dir / "ok.png";
+  RunResult r = runWavepath({"render", file.string(), "-o", out.string(), "--width", "8", "--height", "8", "--spp", "1"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+TEST_F(BadScene, MissingFile) {
+  Outcome o = renderExpectingFailure(dir / "does-not-exist.gltf");
+  expectOneErrorLine(o.run, "does-not-exist.gltf");
+  EXPECT_FALSE(std::filesystem::exists(o.output));
+}
+
+TEST_F(BadScene, MalformedJson) { expectRejected("malformed.gltf", "{\"asset\": {\"version\": \"2.0\"", "malformed.gltf"); }
+
+TEST_F(BadScene, TruncatedGlb) {
+  std::string json = triangleGltf(kTriangle, {0, 1, 2});
+  while (json.size() % 4) json += ' ';
+  std::string glb = "glTF";
+  auto u32 = [&](uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+  u32(2);
+  u32(uint32_t(12 + 8 + json.size()));
+  u32(uint32_t(json.size()));
+  u32(0x4E4F534A);  // "JSON"
+  glb += json;
+  expectRejected("truncated.glb", glb.substr(0, glb.size() / 2), "truncated.glb");
+}
+
+TEST_F(BadScene, IndexOutOfRange) { expectRejected("index.gltf", triangleGltf(kTriangle, {0, 1, 7}), "out of range"); }
+
+TEST_F(BadScene, NanPosition) {
+  std::vector<glm::vec3> p = kTriangle;
+  p[1].y = std::numeric_limits<float>::quiet_NaN();
+  expectRejected("nan.gltf", triangleGltf(p, {0, 1, 2}), "finite");
+}
+
+TEST_F(BadScene, NodeCycle) {
+  expectRejected("cycle.gltf",
+                 triangleGltf(kTriangle, {0, 1, 2}, "[{\"mesh\":0,\"children\":[1]},{\"children\":[0]}]"), "cycle");
+}
+
+TEST_F(BadScene, UnsupportedRequiredExtension) {
+  std::string ext = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
+                    "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],";
+  expectRejected("draco.gltf", triangleGltf(kTriangle, {0, 1, 2}, "[{\"mesh\":0}]", ext), "KHR_draco_mesh_compression");
+}
+
+TEST_F(BadScene, NothingRenderable) {
+  expectRejected("empty.gltf", "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{}]}",
+                 "nothing");
+}
+
+TEST(BadFlags, AreRejectedWithUsageHint) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"render", scene.string(), "--spp", "0"},
+           {"render", scene.string(), "--mode", "guess"},
+           {"render", scene.string(), "--width", "abc"},
+           {"render", scene.string(), "--no-such-flag"},
+           {"render"},
+           {"teleport"},
+       }) {
+    RunResult r = runWavepath(args, {}, 60);
+    SCOPED_TRACE(args.back());
+    expectOneErrorLine(r, "wavepath --help", 2);
+  }
+}
+
+TEST(BadOutput, MissingDirectoryAndUnknownFormatFailBeforeRendering) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  std::filesystem::path dir = scratchDirectory("bad-output");
+  RunResult missing = runWavepath({"render", scene.string(), "-o", (dir / "no" / "such" / "dir.png").string()}, {}, 60);
+  expectOneErrorLine(missing, "dir.png");
+  RunResult format = runWavepath({"render", scene.string(), "-o", (dir / "image.jpg").string()}, {}, 60);
+  expectOneErrorLine(format, "image.jpg");
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+TEST(NoDevice, MissingVulkanDriverIsOneClearError) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  Outcome o = renderExpectingFailure(scene, {},
+                                     {"VK_ICD_FILENAMES=/nonexistent/icd.json", "VK_DRIVER_FILES=/nonexistent/icd.json",
+                                      "WAVEPATH_VALIDATION=0"});
+  expectOneErrorLine(o.run, "Vulkan");
+  EXPECT_FALSE(std::filesystem::exists(o.output));
+}
+
+TEST(NoDevice, DeviceIndexOutOfRange) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  Outcome o = renderExpectingFailure(scene, {"--device", "99"});
+  expectOneErrorLine(o.run, "wavepath devices");
+}
+
+TEST(Devices, ListsTheLavapipeDevice) {
+  RunResult r = runWavepath({"devices"}, {}, 60);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("0: "), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace wp::test

@@ -1,0 +1,28 @@
+// Runs the wavepath executable as a user would, capturing exit code and output.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wp::test {
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `wavepath args...` with extra environment assignments ("NAME=value"), with the
+// Vulkan validation layer on (WAVEPATH_VALIDATION=1) unless env overrides it; kills it
+// after timeoutSeconds so a hang fails the test instead of stalling the suite.
+RunResult runWavepath(const std::vector<std::string>& args, const std::vector<std::string>& env = {},
+                      int timeoutSeconds = 600);
+
+// A fresh empty directory for one test's files.
+std::filesystem::path scratchDirectory(const std::string& name);
+
+// The repository root (WAVEPATH_SOURCE_DIR, set by ctest).
+std::filesystem::path sourceDirectory();
+
+}  // namespace wp::test
