@@ -1,0 +1,290 @@
+// Packs a wp::Scene into the GPU buffers of layout.h: one bottom-level BVH per mesh shared by
+// its instances, a top-level BVH over the instances, and the power-proportional light table.
+#include "bvh/gpu_scene.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "bvh/bvh_builder.h"
+#include "core/log.h"
+#include "shaders/common/traverse.h"
+
+namespace wp {
+namespace {
+
+static_assert(2 * WP_BVH_MAX_DEPTH <= WP_TRAVERSAL_STACK_SIZE,
+              "the traversal stack must hold a top-level and a bottom-level path");
+
+constexpr uint32_t kMeshLeafSize = 4;
+// One instance per top-level leaf: an instance test (transform plus a whole bottom-level
+// traversal) costs far more than a node visit.
+constexpr uint32_t kInstanceLeafSize = 1;
+
+using Clock = std::chrono::steady_clock;
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void setChild(glm::vec4& lo, glm::vec4& hi, const Aabb& bounds, uint32_t index, uint32_t count) {
+  lo = glm::vec4(bounds.min, gpu::asFloat(index));
+  hi = glm::vec4(bounds.max, gpu::asFloat(count));
+}
+
+void setEmptyChild(glm::vec4& lo, glm::vec4& hi) {
+  setChild(lo, hi, Aabb{}, WP_INVALID, 0);
+}
+
+// Appends `bvh` in the GPU layout, one node per interior node (leaves live in their parent),
+// leaf ranges offset by primBase. Returns the absolute index of the root.
+uint32_t appendNodes(const Bvh& bvh, uint32_t primBase, std::vector<gpu::BvhNode>& out) {
+  uint32_t base = static_cast<uint32_t>(out.size());
+  if (bvh.nodes.size() <= 1) {
+    gpu::BvhNode& node = out.emplace_back();
+    if (bvh.nodes.empty()) {
+      setEmptyChild(node.leftMin, node.leftMax);
+    } else {
+      const Bvh::Node& leaf = bvh.nodes[0];
+      setChild(node.leftMin, node.leftMax, leaf.bounds, primBase + leaf.index, leaf.count);
+    }
+    setEmptyChild(node.rightMin, node.rightMax);
+    return base;
+  }
+  std::vector<uint32_t> gpuIndex(bvh.nodes.size(), WP_INVALID);
+  uint32_t interiorCount = 0;
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    if (!bvh.nodes[i].isLeaf()) {
+      gpuIndex[i] = base + interiorCount++;
+    }
+  }
+  out.resize(base + interiorCount);
+  auto childIndex = [&](uint32_t c) {
+    const Bvh::Node& child = bvh.nodes[c];
+    return child.isLeaf() ? primBase + child.index : gpuIndex[c];
+  };
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    const Bvh::Node& n = bvh.nodes[i];
+    if (n.isLeaf()) {
+      continue;
+    }
+    gpu::BvhNode& g = out[gpuIndex[i]];
+    const Bvh::Node& left = bvh.nodes[n.index];
+    const Bvh::Node& right = bvh.nodes[n.index + 1];
+    setChild(g.leftMin, g.leftMax, left.bounds, childIndex(n.index), left.count);
+    setChild(g.rightMin, g.rightMax, right.bounds, childIndex(n.index + 1), right.count);
+  }
+  return base;
+}
+
+Aabb transformBox(const glm::mat4& m, const Aabb& b) {
+  Aabb out;
+  for (int corner = 0; corner < 8; ++corner) {
+    glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                (corner & 4) ? b.max.z : b.min.z);
+    out.grow(glm::vec3(m * glm::vec4(p, 1.0f)));
+  }
+  return out;
+}
+
+gpu::GpuInstance makeInstance(const glm::mat4& worldToObject, glm::uvec4 info) {
+  // glm matrices are column-major: row r is (m[0][r], m[1][r], m[2][r], m[3][r]).
+  glm::mat4 rows = glm::transpose(worldToObject);
+  return {rows[0], rows[1], rows[2], info};
+}
+
+// Fills the lights' pmf (edge1.w) and alias table (edge2.w, info.x) with Vose's method, in
+// double so the table reproduces the pmf to float precision. Zero total power (impossible
+// for emissive triangles of positive area, unless it underflows) falls back to uniform.
+void buildLightTable(std::vector<gpu::GpuLight>& lights, const std::vector<double>& power) {
+  size_t n = lights.size();
+  if (n == 0) {
+    return;
+  }
+  double total = 0.0;
+  for (double p : power) {
+    total += p;
+  }
+  bool uniform = !(total > 0.0) || !std::isfinite(total);
+  std::vector<double> scaled(n);
+  std::vector<uint32_t> small, large;
+  for (size_t i = 0; i < n; ++i) {
+    double pmf = uniform ? 1.0 / static_cast<double>(n) : power[i] / total;
+    lights[i].edge1.w = static_cast<float>(pmf);
+    scaled[i] = pmf * static_cast<double>(n);
+    (scaled[i] < 1.0 ? small : large).push_back(static_cast<uint32_t>(i));
+  }
+  while (!small.empty() && !large.empty()) {
+    uint32_t s = small.back();
+    small.pop_back();
+    uint32_t l = large.back();
+    large.pop_back();
+    lights[s].edge2.w = static_cast<float>(scaled[s]);
+    lights[s].info.x = l;
+    scaled[l] = (scaled[l] + scaled[s]) - 1.0;
+    (scaled[l] < 1.0 ? small : large).push_back(l);
+  }
+  // What is left has probability 1/n up to rounding: it always keeps itself.
+  for (const std::vector<uint32_t>* rest : {&small, &large}) {
+    for (uint32_t i : *rest) {
+      lights[i].edge2.w = 1.0f;
+      lights[i].info.x = i;
+    }
+  }
+}
+
+struct PackedMesh {
+  Aabb bounds;                    // object space
+  std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
+};
+
+}  // namespace
+
+GpuScene packScene(const Scene& scene) {
+  GpuScene out;
+  double buildSeconds = 0.0;
+  double weightedSah = 0.0;
+
+  BvhBuildOptions meshOptions;
+  meshOptions.maxLeafSize = kMeshLeafSize;
+  meshOptions.maxDepth = WP_BVH_MAX_DEPTH;
+
+  std::vector<PackedMesh> packed(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    size_t n = mesh.triangleCount();
+    std::vector<Aabb> bounds(n);
+    std::vector<glm::vec3> centroids(n);
+    std::vector<uint32_t> ordinal(n, WP_INVALID);
+    for (size_t t = 0; t < n; ++t) {
+      glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
+      glm::vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
+      glm::vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
+      bounds[t].grow(a);
+      bounds[t].grow(b);
+      bounds[t].grow(c);
+      centroids[t] = (a + b + c) * (1.0f / 3.0f);
+      glm::vec3 normal = glm::cross(b - a, c - a);
+      bool degenerate = !(glm::dot(normal, normal) > 0.0f) || !isFinite(normal);
+      if (scene.materials[mesh.materials[t]].isEmissive() && !degenerate) {
+        ordinal[t] = static_cast<uint32_t>(packed[m].emitters.size());
+        packed[m].emitters.push_back(static_cast<uint32_t>(t));
+      }
+    }
+
+    auto start = Clock::now();
+    Bvh bvh = buildBvh(bounds, centroids, meshOptions);
+    buildSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+    weightedSah += static_cast<double>(sahCost(bvh)) * static_cast<double>(n);
+    if (!bvh.nodes.empty()) {
+      packed[m].bounds = bvh.nodes[0].bounds;
+    }
+
+    GpuMeshRange& range = out.meshes.emplace_back();
+    range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
+    range.triangleCount = static_cast<uint32_t>(n);
+    range.rootNode = appendNodes(bvh, range.firstTriangle, out.nodes);
+    for (uint32_t t : bvh.primIndices) {
+      glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
+      glm::vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
+      glm::vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
+      out.triangles.push_back({glm::vec4(a, 0.0f), glm::vec4(b - a, 0.0f), glm::vec4(c - a, 0.0f),
+                               glm::uvec4(mesh.materials[t], ordinal[t], 0u, 0u)});
+    }
+  }
+  out.triangleCount = out.triangles.size();
+  out.sahCost = out.triangleCount ? weightedSah / static_cast<double>(out.triangleCount) : 0.0;
+
+  // Candidate instances: their GPU record, world bounds and, for meshes, the mesh.
+  std::vector<gpu::GpuInstance> candidates;
+  std::vector<Aabb> worldBounds;
+  std::vector<uint32_t> candidateMesh;  // WP_INVALID for spheres
+  std::vector<glm::mat4> candidateTransform;
+  auto addCandidate = [&](const glm::mat4& objectToWorld, const Aabb& objectBounds, glm::uvec4 info,
+                          uint32_t mesh, const std::string& what) {
+    glm::mat4 worldToObject = glm::inverse(objectToWorld);
+    bool invertible = glm::determinant(objectToWorld) != 0.0f;
+    for (int col = 0; col < 4 && invertible; ++col) {
+      invertible = isFinite(glm::vec3(worldToObject[col])) && std::isfinite(worldToObject[col].w);
+    }
+    if (!invertible) {
+      warn(what + " has a singular transform (a zero scale?) and is left out");
+      return;
+    }
+    candidates.push_back(makeInstance(worldToObject, info));
+    worldBounds.push_back(transformBox(objectToWorld, objectBounds));
+    candidateMesh.push_back(mesh);
+    candidateTransform.push_back(objectToWorld);
+  };
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const MeshInstance& inst = scene.instances[i];
+    const GpuMeshRange& range = out.meshes[inst.mesh];
+    if (range.triangleCount == 0) {
+      continue;
+    }
+    addCandidate(inst.objectToWorld, packed[inst.mesh].bounds,
+                 glm::uvec4(WP_INSTANCE_MESH, range.rootNode, 0u, 0u), inst.mesh,
+                 "instance " + std::to_string(i) + " of mesh '" + scene.meshes[inst.mesh].name + "'");
+  }
+  Aabb unitCube{glm::vec3(-1.0f), glm::vec3(1.0f)};
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    addCandidate(scene.spheres[i].objectToWorld, unitCube,
+                 glm::uvec4(WP_INSTANCE_SPHERE, scene.spheres[i].material, WP_INVALID, 0u), WP_INVALID,
+                 "sphere " + std::to_string(i));
+  }
+
+  std::vector<glm::vec3> centers(worldBounds.size());
+  Aabb sceneBounds;
+  for (size_t i = 0; i < worldBounds.size(); ++i) {
+    centers[i] = worldBounds[i].center();
+    sceneBounds.grow(worldBounds[i]);
+  }
+  BvhBuildOptions instanceOptions;
+  instanceOptions.maxLeafSize = kInstanceLeafSize;
+  instanceOptions.maxDepth = WP_BVH_MAX_DEPTH;
+  auto start = Clock::now();
+  Bvh tlas = buildBvh(worldBounds, centers, instanceOptions);
+  buildSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+  out.tlasRoot = appendNodes(tlas, 0, out.nodes);
+  out.bvhBuildSeconds = buildSeconds;
+  if (!sceneBounds.isEmpty()) {
+    out.boundsMin = sceneBounds.min;
+    out.boundsMax = sceneBounds.max;
+  }
+
+  std::vector<double> power;
+  for (uint32_t c : tlas.primIndices) {
+    gpu::GpuInstance inst = candidates[c];
+    if (candidateMesh[c] != WP_INVALID) {
+      inst.info.z = static_cast<uint32_t>(out.lights.size());
+      const Mesh& mesh = scene.meshes[candidateMesh[c]];
+      const glm::mat4& m = candidateTransform[c];
+      for (uint32_t t : packed[candidateMesh[c]].emitters) {
+        glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[3 * t]], 1.0f));
+        glm::vec3 b(m * glm::vec4(mesh.positions[mesh.indices[3 * t + 1]], 1.0f));
+        glm::vec3 d(m * glm::vec4(mesh.positions[mesh.indices[3 * t + 2]], 1.0f));
+        const Material& material = scene.materials[mesh.materials[t]];
+        float area = 0.5f * glm::length(glm::cross(b - a, d - a));
+        out.lights.push_back({glm::vec4(a, area), glm::vec4(b - a, 0.0f), glm::vec4(d - a, 0.0f),
+                              glm::vec4(material.emission, 0.0f),
+                              glm::uvec4(0u, material.doubleSided ? 1u : 0u, 0u, 0u)});
+        power.push_back(static_cast<double>(luminance(material.emission)) * area *
+                        (material.doubleSided ? 2.0 : 1.0));
+      }
+    }
+    out.instances.push_back(inst);
+  }
+  buildLightTable(out.lights, power);
+
+  for (const Material& material : scene.materials) {
+    out.materials.push_back({glm::vec4(material.baseColor, material.alpha),
+                             glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f)});
+  }
+  for (const Plane& plane : scene.planes) {
+    out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});
+  }
+  return out;
+}
+
+}  // namespace wp

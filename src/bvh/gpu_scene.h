@@ -1,0 +1,53 @@
+// Packs a wp::Scene into the GPU buffers of layout.h: BVH nodes, triangles, instances,
+// planes, materials and the light table.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+#include "shaders/common/layout.h"
+
+namespace wp {
+
+// Where one scene mesh lives in the packed arrays.
+struct GpuMeshRange {
+  uint32_t rootNode = 0;       // its bottom-level BVH root in GpuScene::nodes
+  uint32_t firstTriangle = 0;  // its triangles are [firstTriangle, firstTriangle + triangleCount)
+  uint32_t triangleCount = 0;
+};
+
+struct GpuScene {
+  // Every bottom-level BVH (one per mesh, in mesh order) and then the top level, with
+  // absolute child indices. Bottom-level leaves index `triangles`, top-level leaves `instances`.
+  std::vector<gpu::BvhNode> nodes;
+  // Object-space triangles of every mesh in mesh order, each mesh's in its BVH leaf order.
+  std::vector<gpu::GpuTriangle> triangles;
+  // Mesh instances and spheres in top-level leaf order. Instances of meshes without
+  // triangles and instances with a singular transform are left out.
+  std::vector<gpu::GpuInstance> instances;
+  std::vector<gpu::GpuPlane> planes;
+  std::vector<gpu::GpuMaterial> materials;
+  // World-space emissive triangles: for each mesh instance in `instances` order, its mesh's
+  // emissive non-degenerate triangles in the mesh's original order.
+  std::vector<gpu::GpuLight> lights;
+  std::vector<GpuMeshRange> meshes;  // one per scene mesh
+  uint32_t tlasRoot = 0;
+  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds of the instances (planes are
+                                               // unbounded); all 0 without instances
+  double bvhBuildSeconds = 0.0;  // wall time of all bottom- and top-level builds
+  size_t triangleCount = 0;      // triangles stored (each mesh once, however often instanced)
+  // SAH cost (sahCost, traversal and intersection cost 1) of the bottom levels, as the mean
+  // over meshes weighted by triangle count; 0 without triangles.
+  double sahCost = 0.0;
+};
+
+// Packs `scene` for traceClosest / traceAny and the shading stages. Requires a scene as the
+// loader produces it: valid material indices, finite positions, unit plane normals.
+// Singular instance transforms are skipped with a warning.
+GpuScene packScene(const Scene& scene);
+
+}  // namespace wp
