@@ -1,0 +1,714 @@
+// Tests of the BVH builders, the GPU scene packer and the portable traversal (traverse.h
+// compiled as C++) against brute force.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "bvh/bvh_builder.h"
+#include "bvh/gpu_scene.h"
+#include "bvh/sweep_builder.h"
+#include "core/error.h"
+#include "shaders/common/traverse.h"
+
+namespace {
+
+using wp::Aabb;
+using wp::Bvh;
+using wp::gpu::Hit;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+struct Rng {
+  std::mt19937 engine;
+  explicit Rng(uint32_t seed) : engine(seed) {}
+  float uniform(float lo = 0.0f, float hi = 1.0f) {
+    return std::uniform_real_distribution<float>(lo, hi)(engine);
+  }
+  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(engine); }
+  glm::vec3 inBox(glm::vec3 lo, glm::vec3 hi) {
+    return {uniform(lo.x, hi.x), uniform(lo.y, hi.y), uniform(lo.z, hi.z)};
+  }
+  glm::vec3 unitVector() {
+    std::normal_distribution<float> n;
+    glm::vec3 v;
+    do {
+      v = {n(engine), n(engine), n(engine)};
+    } while (glm::dot(v, v) < 1e-6f);
+    return glm::normalize(v);
+  }
+};
+
+// ---- geometry generators --------------------------------------------------------------
+
+using Triangles = std::vector<glm::vec3>;  // 3 vertices per triangle
+
+// Random triangles in [-1, 1]^3 whose sizes span two orders of magnitude.
+Triangles randomSoup(Rng& rng, int count) {
+  Triangles t;
+  for (int i = 0; i < count; ++i) {
+    glm::vec3 c = rng.inBox(glm::vec3(-1.0f), glm::vec3(1.0f));
+    float size = 0.005f * std::pow(100.0f, rng.uniform());
+    for (int k = 0; k < 3; ++k) {
+      t.push_back(c + size * rng.unitVector());
+    }
+  }
+  return t;
+}
+
+// An n x n height field over [-1, 1]^2 in the xz plane, gently displaced.
+Triangles gridMesh(int n) {
+  Triangles t;
+  auto p = [n](int i, int j) {
+    float x = -1.0f + 2.0f * static_cast<float>(i) / static_cast<float>(n);
+    float z = -1.0f + 2.0f * static_cast<float>(j) / static_cast<float>(n);
+    return glm::vec3(x, 0.1f * std::sin(3.0f * x) * std::cos(2.0f * z), z);
+  };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      t.insert(t.end(), {p(i, j), p(i + 1, j), p(i, j + 1), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)});
+    }
+  }
+  return t;
+}
+
+// Small triangles gathered in a few tight, unevenly populated clusters.
+Triangles clustered(Rng& rng, int count) {
+  std::vector<glm::vec3> centers;
+  for (int i = 0; i < 6; ++i) {
+    centers.push_back(rng.inBox(glm::vec3(-1.0f), glm::vec3(1.0f)));
+  }
+  Triangles t;
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  for (int i = 0; i < count; ++i) {
+    int cluster = std::min(rng.integer(0, 15), 5) == 5 ? 5 : rng.integer(0, 4);
+    glm::vec3 c = centers[cluster] + 0.05f * glm::vec3(n(rng.engine), n(rng.engine), n(rng.engine));
+    for (int k = 0; k < 3; ++k) {
+      t.push_back(c + 0.01f * rng.unitVector());
+    }
+  }
+  return t;
+}
+
+struct Prims {
+  std::vector<Aabb> bounds;
+  std::vector<glm::vec3> centroids;
+};
+
+Prims primsOf(const Triangles& t) {
+  Prims p;
+  for (size_t i = 0; i < t.size(); i += 3) {
+    Aabb b;
+    b.grow(t[i]);
+    b.grow(t[i + 1]);
+    b.grow(t[i + 2]);
+    p.bounds.push_back(b);
+    p.centroids.push_back((t[i] + t[i + 1] + t[i + 2]) / 3.0f);
+  }
+  return p;
+}
+
+wp::Mesh meshOf(const Triangles& t, uint32_t material) {
+  wp::Mesh m;
+  for (size_t i = 0; i < t.size(); ++i) {
+    m.positions.push_back(t[i]);
+    m.indices.push_back(static_cast<uint32_t>(i));
+  }
+  m.materials.assign(t.size() / 3, material);
+  return m;
+}
+
+glm::mat4 randomTransform(Rng& rng, float spread) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), rng.inBox(glm::vec3(-spread), glm::vec3(spread)));
+  m = glm::rotate(m, rng.uniform(0.0f, 6.2831853f), rng.unitVector());
+  return glm::scale(m, glm::vec3(rng.uniform(0.3f, 2.0f), rng.uniform(0.3f, 2.0f), rng.uniform(0.3f, 2.0f)));
+}
+
+// ---- structural checks ----------------------------------------------------------------
+
+// Checks the tree invariants; returns the depth of the deepest leaf.
+uint32_t checkTree(const Bvh& bvh, const Prims& p, const wp::BvhBuildOptions& options) {
+  size_t n = p.bounds.size();
+  if (n == 0) {
+    EXPECT_TRUE(bvh.nodes.empty());
+    EXPECT_TRUE(bvh.primIndices.empty());
+    return 0;
+  }
+  EXPECT_EQ(bvh.primIndices.size(), n);
+  std::vector<int> seenInOrder(n, 0), seenInLeaf(n, 0);
+  for (uint32_t prim : bvh.primIndices) {
+    EXPECT_LT(prim, n);
+    if (prim < n) {
+      ++seenInOrder[prim];
+    }
+  }
+  uint32_t maxDepth = 0;
+  std::vector<std::pair<uint32_t, uint32_t>> stack{{0u, 0u}};
+  size_t visited = 0;
+  while (!stack.empty()) {
+    auto [index, depth] = stack.back();
+    stack.pop_back();
+    ++visited;
+    const Bvh::Node& node = bvh.nodes.at(index);
+    maxDepth = std::max(maxDepth, depth);
+    if (node.isLeaf()) {
+      EXPECT_LE(node.count, options.maxLeafSize);
+      for (uint32_t i = node.index; i < node.index + node.count; ++i) {
+        uint32_t prim = bvh.primIndices.at(i);
+        ++seenInLeaf[prim];
+        EXPECT_TRUE(node.bounds.contains(p.bounds[prim])) << "leaf " << index << " prim " << prim;
+      }
+      continue;
+    }
+    for (uint32_t c = node.index; c < node.index + 2; ++c) {
+      EXPECT_TRUE(node.bounds.contains(bvh.nodes.at(c).bounds)) << "node " << index << " child " << c;
+      stack.emplace_back(c, depth + 1);
+    }
+  }
+  EXPECT_EQ(visited, bvh.nodes.size()) << "unreachable nodes";
+  for (size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(seenInOrder[i], 1) << "primitive " << i << " in primIndices";
+    EXPECT_EQ(seenInLeaf[i], 1) << "primitive " << i << " in leaves";
+  }
+  EXPECT_LE(maxDepth, options.maxDepth);
+  return maxDepth;
+}
+
+using BuildFn = std::function<Bvh(const Prims&, const wp::BvhBuildOptions&)>;
+const BuildFn kBinned = [](const Prims& p, const wp::BvhBuildOptions& o) {
+  return wp::buildBvh(p.bounds, p.centroids, o);
+};
+const BuildFn kSweep = [](const Prims& p, const wp::BvhBuildOptions& o) {
+  return wp::buildBvhSweep(p.bounds, p.centroids, o);
+};
+
+TEST(BvhBuild, StructureOnRandomAndDegenerateInputs) {
+  Rng rng(1);
+  std::vector<Prims> inputs = {primsOf(randomSoup(rng, 3000)), primsOf(gridMesh(30)),
+                               primsOf(clustered(rng, 2000)), Prims{}, primsOf(randomSoup(rng, 1))};
+  Prims same;  // every centroid equal: only the median split can divide them
+  for (int i = 0; i < 100; ++i) {
+    Aabb b{glm::vec3(-1.0f - 0.01f * i), glm::vec3(1.0f + 0.01f * i)};
+    same.bounds.push_back(b);
+    same.centroids.push_back(glm::vec3(0.0f));
+  }
+  inputs.push_back(same);
+  for (const BuildFn& build : {kBinned, kSweep}) {
+    for (const Prims& p : inputs) {
+      wp::BvhBuildOptions options;
+      Bvh bvh = build(p, options);
+      checkTree(bvh, p, options);
+      if (p.bounds.size() == 1) {
+        ASSERT_EQ(bvh.nodes.size(), 1u);
+        EXPECT_EQ(bvh.nodes[0].count, 1u);
+      }
+    }
+    Bvh sameTree = build(same, {});
+    EXPECT_GT(sameTree.nodes.size(), 1u) << "equal centroids must still be split into small leaves";
+  }
+}
+
+TEST(BvhBuild, DepthBudgetHoldsOnExponentialSpacing) {
+  // Primitives at x = 2^i make the SAH peel one off per level; the budget must cut in.
+  Prims p;
+  for (int i = 0; i < 120; ++i) {
+    float x = std::ldexp(1.0f, i - 60);
+    p.bounds.push_back(Aabb{glm::vec3(x, 0.0f, 0.0f), glm::vec3(x * 1.5f, 1.0f, 1.0f)});
+    p.centroids.push_back(p.bounds.back().center());
+  }
+  wp::BvhBuildOptions options;
+  options.maxLeafSize = 1;
+  options.maxDepth = 8;
+  for (const BuildFn& build : {kBinned, kSweep}) {
+    EXPECT_LE(checkTree(build(p, options), p, options), 8u);
+  }
+  options.maxDepth = 6;  // 120 > 2^6 leaves of one
+  EXPECT_THROW(wp::buildBvh(p.bounds, p.centroids, options), wp::Error);
+}
+
+TEST(BvhBuild, ThreadCountDoesNotChangeTheTree) {
+  Rng rng(2);
+  Prims p = primsOf(randomSoup(rng, 50000));
+  wp::BvhBuildOptions one, four;
+  one.threads = 1;
+  four.threads = 4;
+  Bvh a = wp::buildBvh(p.bounds, p.centroids, one);
+  Bvh b = wp::buildBvh(p.bounds, p.centroids, four);
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  EXPECT_EQ(a.primIndices, b.primIndices);
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    ASSERT_EQ(a.nodes[i].index, b.nodes[i].index) << i;
+    ASSERT_EQ(a.nodes[i].count, b.nodes[i].count) << i;
+  }
+}
+
+TEST(BvhBuild, BinnedSahWithinTenPercentOfSweep) {
+  Rng rng(3);
+  struct Case {
+    const char* name;
+    Triangles triangles;
+  };
+  std::vector<Case> cases = {{"soup 2000", randomSoup(rng, 2000)},
+                             {"soup 5000", randomSoup(rng, 5000)},
+                             {"grid 40x40", gridMesh(40)},
+                             {"clusters 4000", clustered(rng, 4000)}};
+  for (const Case& c : cases) {
+    Prims p = primsOf(c.triangles);
+    float binned = wp::sahCost(wp::buildBvh(p.bounds, p.centroids));
+    float sweep = wp::sahCost(wp::buildBvhSweep(p.bounds, p.centroids));
+    EXPECT_GT(sweep, 1.0f) << c.name;
+    EXPECT_LE(binned, 1.10f * sweep) << c.name << ": binned " << binned << " sweep " << sweep;
+  }
+}
+
+TEST(BvhBuild, SahCostOfHandBuiltTree) {
+  // Root [0,2]^3 (area 24) with leaves [0,1]^3 (area 6, 1 prim) and [0,2]^3 (area 24, 2 prims).
+  Bvh bvh;
+  bvh.nodes = {{Aabb{glm::vec3(0.0f), glm::vec3(2.0f)}, 1, 0},
+               {Aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, 0, 1},
+               {Aabb{glm::vec3(0.0f), glm::vec3(2.0f)}, 1, 2}};
+  bvh.primIndices = {0, 1, 2};
+  EXPECT_FLOAT_EQ(wp::sahCost(bvh, {1.0f, 1.0f}), 1.0f + 0.25f + 2.0f);
+  EXPECT_FLOAT_EQ(wp::sahCost(bvh, {2.0f, 3.0f}), 2.0f + 0.75f + 6.0f);
+  EXPECT_EQ(wp::sahCost(Bvh{}), 0.0f);
+}
+
+// ---- intersection routines ------------------------------------------------------------
+
+TEST(Intersect, UnitSphereRoots) {
+  using wp::gpu::intersectUnitSphere;
+  EXPECT_FLOAT_EQ(intersectUnitSphere(glm::vec3(0, 0, -3), glm::vec3(0, 0, 1), kInf), 2.0f);
+  // Inside: the far root; a direction of length 2 halves t.
+  EXPECT_FLOAT_EQ(intersectUnitSphere(glm::vec3(0.0f), glm::vec3(0, 0, 2), kInf), 0.5f);
+  EXPECT_EQ(intersectUnitSphere(glm::vec3(0, 0, -3), glm::vec3(0, 0, 1), 1.5f), 1.5f);
+  EXPECT_EQ(intersectUnitSphere(glm::vec3(0, 2, -3), glm::vec3(0, 0, 1), kInf), kInf);
+  EXPECT_EQ(intersectUnitSphere(glm::vec3(0, 0, 3), glm::vec3(0, 0, 1), 10.0f), 10.0f);
+}
+
+TEST(Intersect, TriangleBothFacesAndEdges) {
+  using wp::gpu::intersectTriangle;
+  glm::vec3 v0(0, 0, 0), e1(1, 0, 0), e2(0, 1, 0);
+  EXPECT_FLOAT_EQ(intersectTriangle(glm::vec3(0.25f, 0.25f, 1), glm::vec3(0, 0, -1), v0, e1, e2, kInf), 1.0f);
+  EXPECT_FLOAT_EQ(intersectTriangle(glm::vec3(0.25f, 0.25f, -2), glm::vec3(0, 0, 1), v0, e1, e2, kInf), 2.0f);
+  EXPECT_EQ(intersectTriangle(glm::vec3(0.75f, 0.75f, 1), glm::vec3(0, 0, -1), v0, e1, e2, 5.0f), 5.0f);
+  EXPECT_EQ(intersectTriangle(glm::vec3(0.25f, 0.25f, 1), glm::vec3(0, 0, 1), v0, e1, e2, 5.0f), 5.0f);
+  EXPECT_EQ(intersectTriangle(glm::vec3(0.25f, 0.25f, 1), glm::vec3(0, 0, -1), v0, e1, e2, 1.0f), 1.0f);
+  // In the triangle's plane, and a degenerate triangle: never a hit, never NaN.
+  EXPECT_EQ(intersectTriangle(glm::vec3(-1, 0.25f, 0), glm::vec3(1, 0, 0), v0, e1, e2, 7.0f), 7.0f);
+  EXPECT_EQ(intersectTriangle(glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), v0, e1, 2.0f * e1, 7.0f), 7.0f);
+}
+
+TEST(Intersect, PlaneAndSlabs) {
+  using wp::gpu::intersectAabb;
+  using wp::gpu::intersectPlane;
+  using wp::gpu::rayInverseDirection;
+  glm::vec3 up(0, 1, 0);
+  EXPECT_FLOAT_EQ(intersectPlane(up, -1.0f, glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), kInf), 2.0f);
+  EXPECT_EQ(intersectPlane(up, -1.0f, glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), kInf), kInf);
+  EXPECT_EQ(intersectPlane(up, 1.0f, glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), 3.0f), 3.0f);
+  // Zero direction components: inside the slab on those axes is a hit, outside a miss, no NaN.
+  glm::vec3 lo(-1.0f), hi(1.0f);
+  glm::vec3 inv = rayInverseDirection(glm::vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_TRUE(std::isfinite(inv.x) && std::isfinite(inv.y));
+  glm::vec2 hit = intersectAabb(lo, hi, glm::vec3(0.5f, -0.5f, -5.0f), inv, kInf);
+  EXPECT_LE(hit.x, hit.y);
+  EXPECT_NEAR(hit.x, 4.0f, 1e-5f);
+  glm::vec2 miss = intersectAabb(lo, hi, glm::vec3(1.5f, 0.0f, -5.0f), inv, kInf);
+  EXPECT_GT(miss.x, miss.y);
+  glm::vec2 cut = intersectAabb(lo, hi, glm::vec3(0.0f, 0.0f, -5.0f), inv, 3.0f);
+  EXPECT_GT(cut.x, cut.y) << "the box lies beyond tMax";
+  glm::vec2 behind = intersectAabb(lo, hi, glm::vec3(0.0f, 0.0f, 5.0f), inv, kInf);
+  EXPECT_GT(behind.x, behind.y);
+}
+
+// ---- packed scenes: traversal against brute force ---------------------------------------
+
+Hit traceClosest(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
+  return wp::gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
+                               g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax);
+}
+
+bool traceAny(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
+  return wp::gpu::traceAny(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
+                           g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax);
+}
+
+// Every plane, every instance, every triangle, with the same object-space rays as traverse.h.
+Hit bruteForce(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
+  Hit best{tMax, WP_INVALID, WP_INVALID};
+  for (uint32_t i = 0; i < g.planes.size(); ++i) {
+    glm::vec4 p = g.planes[i].normalDistance;
+    float t = wp::gpu::intersectPlane(glm::vec3(p), p.w, o, d, tMax);
+    if (t < best.t) {
+      best = {t, i | WP_HIT_PLANE, WP_INVALID};
+    }
+  }
+  for (uint32_t i = 0; i < g.instances.size(); ++i) {
+    const wp::gpu::GpuInstance& inst = g.instances[i];
+    glm::vec3 oo = wp::gpu::instanceRayOrigin(inst, o);
+    glm::vec3 od = wp::gpu::instanceRayDirection(inst, d);
+    if (inst.info.x == WP_INSTANCE_SPHERE) {
+      float t = wp::gpu::intersectUnitSphere(oo, od, tMax);
+      if (t < best.t) {
+        best = {t, i, WP_INVALID};
+      }
+      continue;
+    }
+    auto mesh = std::find_if(g.meshes.begin(), g.meshes.end(),
+                             [&](const wp::GpuMeshRange& m) { return m.rootNode == inst.info.y; });
+    EXPECT_NE(mesh, g.meshes.end());
+    for (uint32_t j = mesh->firstTriangle; j < mesh->firstTriangle + mesh->triangleCount; ++j) {
+      const wp::gpu::GpuTriangle& tri = g.triangles[j];
+      float t = wp::gpu::intersectTriangle(oo, od, glm::vec3(tri.v0), glm::vec3(tri.edge1),
+                                           glm::vec3(tri.edge2), tMax);
+      if (t < best.t) {
+        best = {t, i, j};
+      }
+    }
+  }
+  return best;
+}
+
+wp::Scene randomScene(Rng& rng) {
+  wp::Scene s;
+  s.materials.resize(3);
+  s.materials[1].emission = glm::vec3(2.0f, 1.0f, 0.5f);
+  s.meshes.push_back(meshOf(randomSoup(rng, 300), 0));
+  s.meshes.push_back(meshOf(gridMesh(10), 1));
+  s.meshes.push_back(meshOf(clustered(rng, 200), 2));
+  s.meshes.push_back(meshOf(randomSoup(rng, 1), 0));  // a single leaf
+  Triangles degenerate = {glm::vec3(0.0f), glm::vec3(1.0f), glm::vec3(2.0f),
+                          glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+  Triangles withDegenerate = randomSoup(rng, 40);
+  withDegenerate.insert(withDegenerate.end(), degenerate.begin(), degenerate.end());
+  s.meshes.push_back(meshOf(withDegenerate, 1));
+  s.meshes.push_back(wp::Mesh{});  // no triangles: its instance is left out
+  for (uint32_t mesh = 0; mesh < s.meshes.size(); ++mesh) {
+    int copies = mesh == 5 ? 1 : rng.integer(1, 3);
+    for (int i = 0; i < copies; ++i) {
+      s.instances.push_back({mesh, randomTransform(rng, 3.0f)});
+    }
+  }
+  for (int i = 0; i < 6; ++i) {
+    s.spheres.push_back({randomTransform(rng, 4.0f), 2});
+  }
+  s.planes.push_back({glm::vec3(0, 1, 0), -9.0f, 0});
+  s.planes.push_back({glm::normalize(glm::vec3(1, 0.2f, -0.5f)), 14.0f, 1});
+  return s;
+}
+
+struct RayStats {
+  int rays = 0, hits = 0, triangleHits = 0, sphereHits = 0, planeHits = 0, failures = 0, ties = 0;
+};
+
+glm::mat4 objectToWorld(const wp::gpu::GpuInstance& inst) {
+  return glm::inverse(glm::transpose(
+      glm::mat4(inst.worldToObject0, inst.worldToObject1, inst.worldToObject2, glm::vec4(0, 0, 0, 1))));
+}
+
+// A random world-space point on a random triangle of a random mesh instance.
+glm::vec3 pointOnSomeTriangle(const wp::GpuScene& g, Rng& rng) {
+  for (;;) {
+    const wp::gpu::GpuInstance& inst = g.instances[rng.integer(0, static_cast<int>(g.instances.size()) - 1)];
+    if (inst.info.x == WP_INSTANCE_SPHERE) {
+      continue;
+    }
+    const wp::GpuMeshRange& mesh = *std::find_if(g.meshes.begin(), g.meshes.end(),
+                                                 [&](const wp::GpuMeshRange& m) { return m.rootNode == inst.info.y; });
+    const wp::gpu::GpuTriangle& tri =
+        g.triangles[mesh.firstTriangle + rng.integer(0, static_cast<int>(mesh.triangleCount) - 1)];
+    float u = rng.uniform(), v = rng.uniform();
+    if (u + v > 1.0f) {
+      u = 1.0f - u;
+      v = 1.0f - v;
+    }
+    glm::vec3 p = glm::vec3(tri.v0) + u * glm::vec3(tri.edge1) + v * glm::vec3(tri.edge2);
+    return glm::vec3(objectToWorld(inst) * glm::vec4(p, 1.0f));
+  }
+}
+
+void compareRays(const wp::GpuScene& g, Rng& rng, int rayCount, RayStats& stats) {
+  glm::vec3 lo = g.boundsMin, hi = g.boundsMax;
+  glm::vec3 center = 0.5f * (lo + hi);
+  float diagonal = glm::length(hi - lo);
+  for (int r = 0; r < rayCount; ++r) {
+    // Origins inside the bounds or outside them; half the rays aim at a triangle.
+    glm::vec3 o = rng.uniform() < 0.5f ? rng.inBox(lo, hi) : center + diagonal * rng.unitVector();
+    glm::vec3 target = rng.uniform() < 0.5f ? pointOnSomeTriangle(g, rng) : rng.inBox(lo, hi);
+    glm::vec3 d = glm::normalize(target - o);
+    float kind = rng.uniform();
+    if (kind < 0.1f) {  // along an axis: two zero components
+      d = glm::vec3(0.0f);
+      d[rng.integer(0, 2)] = rng.uniform() < 0.5f ? -1.0f : 1.0f;
+    } else if (kind < 0.2f) {  // one zero component
+      d[rng.integer(0, 2)] = 0.0f;
+      d = glm::normalize(d);
+    } else if (kind < 0.3f) {  // not unit length: t is in units of the direction
+      d *= rng.uniform(0.25f, 4.0f);
+    }
+    float limit = rng.uniform();
+    float tMax = limit < 0.4f ? WP_FLT_MAX : (limit < 0.6f ? kInf : rng.uniform(0.01f, 1.5f) * diagonal);
+
+    Hit ref = bruteForce(g, o, d, tMax);
+    Hit got = traceClosest(g, o, d, tMax);
+    ++stats.rays;
+    bool ok = (ref.instance == WP_INVALID) == (got.instance == WP_INVALID);
+    if (ok && ref.instance != WP_INVALID) {
+      ++stats.hits;
+      stats.planeHits += (ref.instance & WP_HIT_PLANE) != 0;
+      stats.triangleHits += ref.primitive != WP_INVALID;
+      stats.sphereHits += (ref.instance & WP_HIT_PLANE) == 0 && ref.primitive == WP_INVALID;
+      ok = std::fabs(got.t - ref.t) <= 1e-5f * ref.t;
+      if (ok && (got.instance != ref.instance || got.primitive != ref.primitive)) {
+        ok = std::fabs(got.t - ref.t) <= 1e-6f * ref.t;  // a genuine tie
+        stats.ties += ok;
+      }
+    }
+    bool nearLimit = ref.instance != WP_INVALID && std::fabs(ref.t - tMax) <= 1e-4f * tMax;
+    bool any = traceAny(g, o, d, tMax);
+    if (!nearLimit && any != (ref.instance != WP_INVALID)) {
+      ok = false;
+    }
+    if (!ok && ++stats.failures <= 10) {
+      ADD_FAILURE() << "ray o=(" << o.x << "," << o.y << "," << o.z << ") d=(" << d.x << "," << d.y << ","
+                    << d.z << ") tMax=" << tMax << ": brute force t=" << ref.t << " inst=" << ref.instance
+                    << " prim=" << ref.primitive << ", traversal t=" << got.t << " inst=" << got.instance
+                    << " prim=" << got.primitive << ", any=" << any;
+    }
+  }
+}
+
+TEST(Traversal, MatchesBruteForceOnRandomScenes) {
+  RayStats stats;
+  for (uint32_t seed = 10; seed < 14; ++seed) {
+    Rng rng(seed);
+    wp::GpuScene g = wp::packScene(randomScene(rng));
+    compareRays(g, rng, 25000, stats);
+  }
+  std::printf("%d rays, %d hits (%d triangles, %d spheres, %d planes), %d ties\n", stats.rays, stats.hits,
+              stats.triangleHits, stats.sphereHits, stats.planeHits, stats.ties);
+  EXPECT_EQ(stats.failures, 0);
+  EXPECT_EQ(stats.rays, 100000);
+  // The comparison only means something if every kind of hit and plenty of misses occur.
+  EXPECT_GT(stats.hits, stats.rays / 4);
+  EXPECT_LT(stats.hits, stats.rays * 9 / 10);
+  EXPECT_GT(stats.triangleHits, stats.rays / 10);
+  EXPECT_GT(stats.sphereHits, stats.rays / 100);
+  EXPECT_GT(stats.planeHits, stats.rays / 100);
+}
+
+TEST(Traversal, EmptyAndPlaneOnlyScenes) {
+  wp::Scene s;
+  s.materials.resize(1);
+  wp::GpuScene empty = wp::packScene(s);
+  ASSERT_EQ(empty.nodes.size(), 1u);
+  EXPECT_EQ(empty.tlasRoot, 0u);
+  EXPECT_EQ(wp::gpu::asUint(empty.nodes[0].leftMin.w), WP_INVALID);
+  EXPECT_EQ(wp::gpu::asUint(empty.nodes[0].rightMin.w), WP_INVALID);
+  EXPECT_GT(empty.nodes[0].leftMin.x, empty.nodes[0].leftMax.x);
+  EXPECT_EQ(traceClosest(empty, glm::vec3(0.0f), glm::vec3(0, 0, 1), WP_FLT_MAX).instance, WP_INVALID);
+  EXPECT_FALSE(traceAny(empty, glm::vec3(0.0f), glm::vec3(0, 0, 1), WP_FLT_MAX));
+
+  s.planes.push_back({glm::vec3(0, 1, 0), -1.0f, 0});
+  wp::GpuScene plane = wp::packScene(s);
+  Hit h = traceClosest(plane, glm::vec3(0.0f), glm::vec3(0, -1, 0), WP_FLT_MAX);
+  EXPECT_EQ(h.instance, 0u | WP_HIT_PLANE);
+  EXPECT_EQ(h.primitive, WP_INVALID);
+  EXPECT_FLOAT_EQ(h.t, 1.0f);
+  EXPECT_FALSE(traceAny(plane, glm::vec3(0.0f), glm::vec3(0, -1, 0), 0.5f));
+}
+
+TEST(Traversal, SingleTriangleMeshIsOneNodeWithAnEmptyRightChild) {
+  wp::Scene s;
+  s.materials.resize(1);
+  s.meshes.push_back(meshOf({glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, 0));
+  s.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -2))});
+  wp::GpuScene g = wp::packScene(s);
+  const wp::gpu::BvhNode& root = g.nodes[g.meshes[0].rootNode];
+  EXPECT_EQ(wp::gpu::asUint(root.leftMin.w), 0u);
+  EXPECT_EQ(wp::gpu::asUint(root.leftMax.w), 1u);
+  EXPECT_EQ(wp::gpu::asUint(root.rightMin.w), WP_INVALID);
+  EXPECT_EQ(wp::gpu::asUint(root.rightMax.w), 0u);
+  EXPECT_GT(root.rightMin.x, root.rightMax.x);
+  Hit h = traceClosest(g, glm::vec3(0.2f, 0.2f, 0.0f), glm::vec3(0, 0, -1), WP_FLT_MAX);
+  EXPECT_FLOAT_EQ(h.t, 2.0f);
+  EXPECT_EQ(h.instance, 0u);
+  EXPECT_EQ(h.primitive, 0u);
+}
+
+TEST(PackScene, GpuNodesCoverEveryTriangleOnceWithinChildBounds) {
+  Rng rng(20);
+  wp::Scene s = randomScene(rng);
+  wp::GpuScene g = wp::packScene(s);
+  EXPECT_EQ(g.triangleCount, g.triangles.size());
+  for (const wp::GpuMeshRange& mesh : g.meshes) {
+    std::vector<int> seen(mesh.triangleCount, 0);
+    std::vector<uint32_t> stack{mesh.rootNode};
+    while (!stack.empty()) {
+      const wp::gpu::BvhNode& n = g.nodes.at(stack.back());
+      stack.pop_back();
+      glm::vec4 mins[2] = {n.leftMin, n.rightMin}, maxs[2] = {n.leftMax, n.rightMax};
+      for (int c = 0; c < 2; ++c) {
+        uint32_t index = wp::gpu::asUint(mins[c].w), count = wp::gpu::asUint(maxs[c].w);
+        if (index == WP_INVALID) {
+          EXPECT_EQ(count, 0u);
+          continue;
+        }
+        if (count == 0) {
+          EXPECT_LT(index, g.tlasRoot) << "bottom-level children stay below the top level";
+          stack.push_back(index);
+          continue;
+        }
+        for (uint32_t t = index; t < index + count; ++t) {
+          ASSERT_GE(t, mesh.firstTriangle);
+          ASSERT_LT(t, mesh.firstTriangle + mesh.triangleCount);
+          ++seen[t - mesh.firstTriangle];
+          const wp::gpu::GpuTriangle& tri = g.triangles[t];
+          for (glm::vec3 v : {glm::vec3(tri.v0), glm::vec3(tri.v0 + tri.edge1), glm::vec3(tri.v0 + tri.edge2)}) {
+            // Edges are stored relative to v0, so v0 + edge may round by an ulp.
+            EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::vec3(mins[c]) - 1e-6f, v)) &&
+                        glm::all(glm::lessThanEqual(v, glm::vec3(maxs[c]) + 1e-6f)));
+          }
+        }
+      }
+    }
+    for (int count : seen) {
+      EXPECT_EQ(count, 1);
+    }
+  }
+  // Mesh 5 has no triangles and its instance is left out; the rest all appear.
+  size_t expected = s.spheres.size();
+  for (const wp::MeshInstance& inst : s.instances) {
+    expected += !s.meshes[inst.mesh].indices.empty();
+  }
+  EXPECT_EQ(g.instances.size(), expected);
+}
+
+// ---- light table ------------------------------------------------------------------------
+
+float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+TEST(PackScene, LightTableIsPowerProportionalWithAnExactAliasTable) {
+  Rng rng(30);
+  wp::Scene s;
+  s.materials.resize(4);
+  s.materials[1].emission = glm::vec3(5.0f, 4.0f, 3.0f);
+  s.materials[2].emission = glm::vec3(0.1f, 0.0f, 0.0f);
+  s.materials[2].doubleSided = true;
+  s.materials[3].emission = glm::vec3(20.0f);
+  wp::Mesh a = meshOf(randomSoup(rng, 300), 0);
+  for (size_t t = 0; t < a.materials.size(); ++t) {
+    a.materials[t] = static_cast<uint32_t>(t % 4);
+  }
+  // A degenerate emissive triangle: no light, no NaN.
+  for (int k = 0; k < 3; ++k) {
+    a.positions.push_back(glm::vec3(1.0f));
+    a.indices.push_back(static_cast<uint32_t>(a.positions.size() - 1));
+  }
+  a.materials.push_back(3);
+  s.meshes.push_back(a);
+  s.meshes.push_back(meshOf(gridMesh(5), 2));
+  for (int i = 0; i < 3; ++i) {
+    s.instances.push_back({0, randomTransform(rng, 3.0f)});
+    s.instances.push_back({1, randomTransform(rng, 3.0f)});
+  }
+  s.spheres.push_back({glm::mat4(1.0f), 1});
+  wp::GpuScene g = wp::packScene(s);
+
+  size_t emissivePerMesh0 = 300 / 4 * 3, emissivePerMesh1 = 50;
+  ASSERT_EQ(g.lights.size(), 3 * (emissivePerMesh0 + emissivePerMesh1));
+  size_t n = g.lights.size();
+  double pmfSum = 0.0, powerSum = 0.0;
+  std::vector<double> power(n), implied(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    const wp::gpu::GpuLight& l = g.lights[i];
+    ASSERT_TRUE(std::isfinite(l.v0.w) && l.v0.w > 0.0f);
+    EXPECT_NEAR(l.v0.w, 0.5f * glm::length(glm::cross(glm::vec3(l.edge1), glm::vec3(l.edge2))), 1e-5f * l.v0.w);
+    power[i] = luminance(glm::vec3(l.emission)) * l.v0.w * (l.info.y ? 2.0 : 1.0);
+    powerSum += power[i];
+    pmfSum += l.edge1.w;
+    ASSERT_GE(l.edge2.w, 0.0f);
+    ASSERT_LE(l.edge2.w, 1.0f);
+    ASSERT_LT(l.info.x, n);
+    implied[i] += l.edge2.w / static_cast<double>(n);
+    implied[l.info.x] += (1.0 - l.edge2.w) / static_cast<double>(n);
+  }
+  EXPECT_NEAR(pmfSum, 1.0, 1e-5);
+  for (size_t i = 0; i < n; ++i) {
+    double expected = power[i] / powerSum;
+    EXPECT_NEAR(g.lights[i].edge1.w, expected, 1e-5 * expected) << i;
+    EXPECT_NEAR(implied[i], g.lights[i].edge1.w, 1e-6 / static_cast<double>(n) + 1e-5 * expected) << i;
+  }
+
+  // Each emissive triangle finds its world-space light at instance.info.z + triangle.info.y.
+  size_t checked = 0;
+  for (const wp::gpu::GpuInstance& inst : g.instances) {
+    if (inst.info.x == WP_INSTANCE_SPHERE) {
+      EXPECT_EQ(inst.info.z, WP_INVALID);
+      continue;
+    }
+    const wp::GpuMeshRange& mesh =
+        *std::find_if(g.meshes.begin(), g.meshes.end(), [&](const wp::GpuMeshRange& m) { return m.rootNode == inst.info.y; });
+    glm::mat4 toWorld = objectToWorld(inst);
+    for (uint32_t t = mesh.firstTriangle; t < mesh.firstTriangle + mesh.triangleCount; ++t) {
+      const wp::gpu::GpuTriangle& tri = g.triangles[t];
+      bool emissive = glm::length(glm::vec3(g.materials[tri.info.x].emission)) > 0.0f &&
+                      glm::length(glm::cross(glm::vec3(tri.edge1), glm::vec3(tri.edge2))) > 0.0f;
+      ASSERT_EQ(tri.info.y != WP_INVALID, emissive);
+      if (!emissive) {
+        continue;
+      }
+      const wp::gpu::GpuLight& l = g.lights.at(inst.info.z + tri.info.y);
+      glm::vec3 v0 = glm::vec3(toWorld * glm::vec4(glm::vec3(tri.v0), 1.0f));
+      EXPECT_NEAR(glm::length(v0 - glm::vec3(l.v0)), 0.0f, 1e-4f);
+      EXPECT_EQ(glm::vec3(l.emission), glm::vec3(g.materials[tri.info.x].emission));
+      EXPECT_EQ(l.info.y, g.materials[tri.info.x].emission.w > 0.5f ? 1u : 0u);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, n);
+  // Emitter ordinals follow the mesh's original triangle order.
+  const wp::GpuMeshRange& mesh0 = g.meshes[0];
+  std::vector<uint32_t> ordinals;
+  for (uint32_t t = mesh0.firstTriangle; t < mesh0.firstTriangle + mesh0.triangleCount; ++t) {
+    if (g.triangles[t].info.y != WP_INVALID) {
+      ordinals.push_back(g.triangles[t].info.y);
+    }
+  }
+  std::sort(ordinals.begin(), ordinals.end());
+  for (size_t i = 0; i < ordinals.size(); ++i) {
+    ASSERT_EQ(ordinals[i], i);
+  }
+}
+
+TEST(PackScene, MaterialsPlanesAndSingularInstances) {
+  wp::Scene s;
+  s.materials.resize(2);
+  s.materials[0].baseColor = glm::vec3(0.1f, 0.2f, 0.3f);
+  s.materials[0].alpha = 0.5f;
+  s.materials[1].emission = glm::vec3(1.0f, 2.0f, 3.0f);
+  s.materials[1].doubleSided = true;
+  s.planes.push_back({glm::vec3(0, 0, 1), 2.0f, 1});
+  s.spheres.push_back({glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 1.0f)), 0});  // singular
+  s.spheres.push_back({glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)), 1});
+  wp::GpuScene g = wp::packScene(s);
+  ASSERT_EQ(g.materials.size(), 2u);
+  EXPECT_EQ(g.materials[0].baseColor, glm::vec4(0.1f, 0.2f, 0.3f, 0.5f));
+  EXPECT_EQ(g.materials[1].emission, glm::vec4(1.0f, 2.0f, 3.0f, 1.0f));
+  EXPECT_EQ(g.materials[0].emission.w, 0.0f);
+  ASSERT_EQ(g.planes.size(), 1u);
+  EXPECT_EQ(g.planes[0].normalDistance, glm::vec4(0, 0, 1, 2));
+  EXPECT_EQ(g.planes[0].info.x, 1u);
+  ASSERT_EQ(g.instances.size(), 1u);
+  EXPECT_EQ(g.instances[0].info, glm::uvec4(WP_INSTANCE_SPHERE, 1u, WP_INVALID, 0u));
+  EXPECT_EQ(g.boundsMin, glm::vec3(-2.0f));
+  EXPECT_EQ(g.boundsMax, glm::vec3(2.0f));
+}
+
+}  // namespace
