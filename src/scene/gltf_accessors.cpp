@@ -1,0 +1,152 @@
+// Bounds-checked reading of glTF accessors: vertex positions and indices.
+#include "scene/gltf_accessors.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace wp::gltf {
+
+namespace {
+
+// The bytes of one accessor: `count` elements of `elementSize` bytes, `stride` apart.
+struct ElementRange {
+  const unsigned char* first = nullptr;
+  size_t count = 0;
+  size_t stride = 0;
+};
+
+const char* componentName(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "an unknown component type";
+  }
+}
+
+const char* typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "an unknown type";
+  }
+}
+
+// Checks the accessor exists and lies inside its buffer view and buffer, and returns its
+// bytes. `elementSize` comes from the type the caller has already checked.
+ElementRange locate(const Context& ctx, int index, const std::string& where, size_t elementSize) {
+  const tinygltf::Model& model = ctx.model;
+  const tinygltf::Accessor& accessor = model.accessors[static_cast<size_t>(index)];
+  const std::string self = where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name);
+  if (accessor.sparse.isSparse) {
+    fail(ctx, self, "sparse accessors are not supported; re-export the scene without them");
+  }
+  if (accessor.bufferView < 0 || static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
+    fail(ctx, self,
+         accessor.bufferView < 0
+             ? "has no buffer view (so all its values would be 0); re-export the file"
+             : "buffer view " + missingIndex(accessor.bufferView, model.bufferViews.size(), "buffer views") +
+                   "; re-export the file");
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(accessor.bufferView)];
+  const std::string viewWhere = describe("buffer view", static_cast<size_t>(accessor.bufferView), view.name);
+  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model.buffers.size()) {
+    fail(ctx, self + ": " + viewWhere,
+         "buffer " + missingIndex(view.buffer, model.buffers.size(), "buffers") + "; re-export the file");
+  }
+  const std::vector<unsigned char>& buffer = model.buffers[static_cast<size_t>(view.buffer)].data;
+  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) {
+    fail(ctx, self + ": " + viewWhere,
+         "bytes " + std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) +
+             " reach past the end of buffer " + std::to_string(view.buffer) + " (" + std::to_string(buffer.size()) +
+             " bytes); the file is damaged: re-export it");
+  }
+  const size_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
+  // Written with subtractions and a division so that no huge count or offset can overflow.
+  const bool fits = accessor.count == 0 ||
+                    (accessor.byteOffset <= view.byteLength && elementSize <= view.byteLength - accessor.byteOffset &&
+                     (accessor.count - 1) <= (view.byteLength - accessor.byteOffset - elementSize) / stride);
+  if (!fits) {
+    fail(ctx, self,
+         std::to_string(accessor.count) + " elements from byte offset " + std::to_string(accessor.byteOffset) +
+             " with stride " + std::to_string(stride) + " do not fit in " + viewWhere + " (" +
+             std::to_string(view.byteLength) + " bytes); the file is damaged: re-export it");
+  }
+  if (accessor.count == 0) return {};
+  return {buffer.data() + view.byteOffset + accessor.byteOffset, accessor.count, stride};
+}
+
+const tinygltf::Accessor& lookUp(const Context& ctx, int index, const std::string& where, const char* role) {
+  if (index < 0 || static_cast<size_t>(index) >= ctx.model.accessors.size()) {
+    fail(ctx, where,
+         std::string(role) + " accessor " + missingIndex(index, ctx.model.accessors.size(), "accessors") +
+             "; re-export the file");
+  }
+  return ctx.model.accessors[static_cast<size_t>(index)];
+}
+
+}  // namespace
+
+std::vector<glm::vec3> readPositions(const Context& ctx, int index, const std::string& where) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "POSITION");
+  if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || accessor.type != TINYGLTF_TYPE_VEC3) {
+    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
+         std::string("POSITION must be FLOAT VEC3, not ") + componentName(accessor.componentType) + " " +
+             typeName(accessor.type) + "; re-export the scene without mesh quantization");
+  }
+  const ElementRange range = locate(ctx, index, where, sizeof(glm::vec3));
+  std::vector<glm::vec3> positions(range.count);
+  for (size_t i = 0; i < range.count; ++i) {
+    std::memcpy(&positions[i], range.first + i * range.stride, sizeof(glm::vec3));
+    const glm::vec3& p = positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      fail(ctx, where,
+           "vertex " + std::to_string(i) + " of the POSITION accessor " + std::to_string(index) +
+               " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+               "); re-export the file");
+    }
+  }
+  return positions;
+}
+
+std::vector<uint32_t> readIndices(const Context& ctx, int index, const std::string& where) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "indices");
+  size_t size = 0;
+  switch (accessor.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: size = 2; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: size = 4; break;
+    default: break;
+  }
+  if (size == 0 || accessor.type != TINYGLTF_TYPE_SCALAR) {
+    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
+         std::string("indices must be SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, not ") +
+             componentName(accessor.componentType) + " " + typeName(accessor.type) + "; re-export the file");
+  }
+  const ElementRange range = locate(ctx, index, where, size);
+  std::vector<uint32_t> indices(range.count);
+  for (size_t i = 0; i < range.count; ++i) {
+    const unsigned char* element = range.first + i * range.stride;
+    if (size == 1) {
+      indices[i] = element[0];
+    } else if (size == 2) {
+      uint16_t value;
+      std::memcpy(&value, element, 2);
+      indices[i] = value;
+    } else {
+      std::memcpy(&indices[i], element, 4);
+    }
+  }
+  return indices;
+}
+
+}  // namespace wp::gltf

@@ -1,0 +1,154 @@
+// Reading a .gltf or .glb file into a tinygltf model, with one-line errors.
+#include "scene/gltf_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "scene/gltf_context.h"
+
+namespace wp::gltf {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// tinygltf converts JSON extras and extensions recursively, so an absurdly nested file
+// would overflow the stack; real files nest a handful of levels.
+constexpr int kMaxJsonDepth = 256;
+
+[[noreturn]] void fileError(const fs::path& file, const std::string& message) {
+  throw Error(file.string() + ": " + message);
+}
+
+std::vector<unsigned char> readWholeFile(const fs::path& file) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (status.type() == fs::file_type::not_found) fileError(file, "no such file; check the path");
+  if (ec) fileError(file, "cannot be accessed (" + ec.message() + "); check the path and its permissions");
+  if (fs::is_directory(status)) {
+    fileError(file, "is a directory, not a glTF file; give the path of a .gltf or .glb file");
+  }
+  if (!fs::is_regular_file(status)) {
+    fileError(file, "is not a regular file; give the path of a .gltf or .glb file");
+  }
+
+  const uintmax_t size = fs::file_size(file, ec);
+  if (ec) fileError(file, "cannot be accessed (" + ec.message() + "); check the path and its permissions");
+  if (size == 0) fileError(file, "is empty; re-export the scene");
+  // tinygltf takes the length as an unsigned int.
+  if (size > std::numeric_limits<unsigned int>::max()) {
+    fileError(file, "is larger than 4 GiB, which the glTF loader cannot read; split the scene");
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fileError(file, std::string("cannot be opened (") + std::strerror(errno) + "); check its permissions");
+  std::vector<unsigned char> bytes(static_cast<size_t>(size));
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (in.gcount() != static_cast<std::streamsize>(bytes.size())) {
+    fileError(file, "could not be read to the end; check that nothing else is writing it");
+  }
+  return bytes;
+}
+
+bool hasBinaryMagic(const std::vector<unsigned char>& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+// The JSON text of a .gltf, or the JSON chunk of a .glb as far as the file holds it.
+std::string_view jsonText(const std::vector<unsigned char>& bytes, bool binary) {
+  const char* text = reinterpret_cast<const char*>(bytes.data());
+  if (!binary) return {text, bytes.size()};
+  if (bytes.size() < 20) return {};
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return {text + 20, std::min<size_t>(length, bytes.size() - 20)};
+}
+
+int maxNesting(std::string_view json) {
+  int depth = 0;
+  int maxDepth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (inString) {
+      if (c == '\\') ++i;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '{' || c == '[') {
+      maxDepth = std::max(maxDepth, ++depth);
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+  return maxDepth;
+}
+
+bool hasGlbExtension(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".glb";
+}
+
+// Images are kept undecoded: textures are not used yet, and a broken image must not stop
+// the geometry from loading.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+void warnEachLine(const fs::path& file, const std::string& text) {
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = oneLine(text.substr(start, end - start));
+    if (!line.empty()) warn(file.string() + ": " + line);
+    start = end + 1;
+  }
+}
+
+}  // namespace
+
+tinygltf::Model parseGltfFile(const fs::path& file) {
+  const std::vector<unsigned char> bytes = readWholeFile(file);
+  const bool binary = hasBinaryMagic(bytes);
+  if (!binary && hasGlbExtension(file)) {
+    fileError(file, "is not a binary glTF file (it does not start with \"glTF\"); re-export it");
+  }
+  if (maxNesting(jsonText(bytes, binary)) > kMaxJsonDepth) {
+    fileError(file, "its JSON nests deeper than " + std::to_string(kMaxJsonDepth) +
+                        " levels, which no real glTF file does; re-export it");
+  }
+
+  tinygltf::TinyGLTF parser;
+  parser.SetImageLoader(skipImage, nullptr);
+  tinygltf::Model model;
+  std::string err;
+  std::string warnings;
+  const std::string baseDir = file.parent_path().string();
+  const auto size = static_cast<unsigned int>(bytes.size());
+  const bool ok =
+      binary ? parser.LoadBinaryFromMemory(&model, &err, &warnings, bytes.data(), size, baseDir)
+             : parser.LoadASCIIFromString(&model, &err, &warnings, reinterpret_cast<const char*>(bytes.data()),
+                                          size, baseDir);
+  if (!ok) {
+    // tinygltf sometimes reports a failure only in its warnings.
+    const std::string reason = oneLine(err.empty() ? warnings : err);
+    fileError(file, "is not a valid glTF 2.0 file: " + (reason.empty() ? "unknown problem" : reason) +
+                        "; check that it is complete, and that the files it names are beside it");
+  }
+  // tinygltf also reports some recoverable problems in `err` while succeeding.
+  warnEachLine(file, warnings);
+  warnEachLine(file, err);
+  return model;
+}
+
+}  // namespace wp::gltf

@@ -1,0 +1,144 @@
+// One glTF mesh (all its primitives) to one wavepath triangle mesh.
+#include "scene/gltf_mesh.h"
+
+#include <limits>
+#include <map>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "scene/gltf_accessors.h"
+
+namespace wp::gltf {
+
+namespace {
+
+const char* modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
+    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
+    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
+    default: return "unknown";
+  }
+}
+
+// Three vertex references per triangle, in the order the glTF specification gives for each
+// mode, so that counter-clockwise front faces survive the conversion of strips and fans.
+std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, int mode) {
+  std::vector<uint32_t> out;
+  if (mode == TINYGLTF_MODE_TRIANGLES) return v;
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    } else {
+      out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+    }
+  }
+  return out;
+}
+
+class MeshBuilder {
+public:
+  MeshBuilder(const Context& ctx, size_t meshIndex, uint32_t defaultMaterial)
+      : ctx_(ctx), gltfMesh_(ctx.model.meshes[meshIndex]), defaultMaterial_(defaultMaterial) {
+    where_ = describe("mesh", meshIndex, gltfMesh_.name);
+    mesh_.name = gltfMesh_.name;
+  }
+
+  Mesh build() {
+    for (size_t p = 0; p < gltfMesh_.primitives.size(); ++p) addPrimitive(p);
+    if (!skipped_.empty()) {
+      warnAt(ctx_, where_, "skipped primitive" + std::string(skippedCount_ > 1 ? "s " : " ") + skipped_ +
+                               ": wavepath renders triangles only");
+    }
+    return std::move(mesh_);
+  }
+
+private:
+  void skip(size_t primitive, const std::string& why) {
+    skipped_ += (skipped_.empty() ? "" : ", ") + std::to_string(primitive) + " (" + why + ")";
+    ++skippedCount_;
+  }
+
+  void addPrimitive(size_t p) {
+    const tinygltf::Primitive& primitive = gltfMesh_.primitives[p];
+    const std::string where = where_ + " primitive " + std::to_string(p);
+    const int mode = primitive.mode;
+    if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+      fail(ctx_, where, "mode " + std::to_string(mode) + " is not a glTF primitive mode (0 to 6); re-export the file");
+    }
+    if (mode < TINYGLTF_MODE_TRIANGLES) return skip(p, modeName(mode));
+    const auto position = primitive.attributes.find("POSITION");
+    if (position == primitive.attributes.end()) return skip(p, "no POSITION");
+
+    const uint32_t material = materialOf(primitive, where);
+    const uint32_t vertexCount = addPositions(position->second, where);
+    std::vector<uint32_t> sequence;
+    if (primitive.indices == -1) {
+      sequence.resize(vertexCount);
+      std::iota(sequence.begin(), sequence.end(), 0u);
+    } else {
+      sequence = readIndices(ctx_, primitive.indices, where);
+      for (uint32_t index : sequence) {
+        if (index >= vertexCount) {
+          fail(ctx_, where,
+               "index " + std::to_string(index) + " is out of range (the POSITION accessor has " +
+                   std::to_string(vertexCount) + " vertices); re-export the file");
+        }
+      }
+    }
+    if (mode == TINYGLTF_MODE_TRIANGLES && sequence.size() % 3 != 0) {
+      fail(ctx_, where,
+           "a TRIANGLES primitive needs a multiple of 3 vertices, not " + std::to_string(sequence.size()) +
+               "; re-export the file");
+    }
+    const uint32_t base = baseOf_.at(position->second);
+    for (uint32_t v : triangulate(sequence, mode)) mesh_.indices.push_back(base + v);
+    mesh_.materials.resize(mesh_.indices.size() / 3, material);
+  }
+
+  uint32_t materialOf(const tinygltf::Primitive& primitive, const std::string& where) const {
+    if (primitive.material == -1) return defaultMaterial_;
+    if (primitive.material < 0 || static_cast<size_t>(primitive.material) >= ctx_.model.materials.size()) {
+      fail(ctx_, where,
+           "material " + missingIndex(primitive.material, ctx_.model.materials.size(), "materials") +
+               "; re-export the file");
+    }
+    return static_cast<uint32_t>(primitive.material);
+  }
+
+  // Appends the accessor's positions once per mesh (primitives often share one vertex
+  // buffer) and returns its vertex count.
+  uint32_t addPositions(int accessor, const std::string& where) {
+    if (baseOf_.count(accessor) == 0) {
+      const std::vector<glm::vec3> positions = readPositions(ctx_, accessor, where);
+      if (positions.size() > std::numeric_limits<uint32_t>::max() - mesh_.positions.size()) {
+        fail(ctx_, where, "the mesh has more vertices than 32-bit indices can address; split the mesh");
+      }
+      baseOf_[accessor] = static_cast<uint32_t>(mesh_.positions.size());
+      mesh_.positions.insert(mesh_.positions.end(), positions.begin(), positions.end());
+    }
+    return static_cast<uint32_t>(ctx_.model.accessors[static_cast<size_t>(accessor)].count);
+  }
+
+  const Context& ctx_;
+  const tinygltf::Mesh& gltfMesh_;
+  const uint32_t defaultMaterial_;
+  std::string where_;
+  Mesh mesh_;
+  std::map<int, uint32_t> baseOf_;  // POSITION accessor -> its first vertex in mesh_
+  std::string skipped_;
+  size_t skippedCount_ = 0;
+};
+
+}  // namespace
+
+Mesh convertMesh(const Context& ctx, size_t index, uint32_t defaultMaterial) {
+  return MeshBuilder(ctx, index, defaultMaterial).build();
+}
+
+}  // namespace wp::gltf
