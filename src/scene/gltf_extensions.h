@@ -1,0 +1,20 @@
+// The glTF extensions wavepath understands, and the check of a file's extension lists.
+#pragma once
+
+#include <array>
+#include <string_view>
+
+#include "scene/gltf_context.h"
+
+namespace wp::gltf {
+
+// Every extension the loader implements. Add an entry here when the loader learns one.
+inline constexpr std::array<std::string_view, 1> kSupportedExtensions{
+    "KHR_materials_emissive_strength",
+};
+
+// Throws when extensionsRequired names an extension outside kSupportedExtensions; warns
+// once, listing them, about unsupported entries of extensionsUsed.
+void checkExtensions(const Context& ctx);
+
+}  // namespace wp::gltf
