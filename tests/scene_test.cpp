@@ -1,0 +1,766 @@
+// Tests of glTF loading into wp::Scene: geometry, transforms, materials, cameras, shapes,
+// every error path, and the shipped Cornell box.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/error.h"
+#include "scene/gltf_loader.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using wp::loadScene;
+using wp::Scene;
+
+constexpr int kU8 = 5121;
+constexpr int kU16 = 5123;
+constexpr int kU32 = 5125;
+constexpr int kFloat = 5126;
+
+std::string base64(const std::string& bytes) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t chunk = static_cast<uint8_t>(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) chunk |= static_cast<uint8_t>(bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) chunk |= static_cast<uint8_t>(bytes[i + 2]);
+    out += digits[(chunk >> 18) & 63];
+    out += digits[(chunk >> 12) & 63];
+    out += i + 1 < bytes.size() ? digits[(chunk >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? digits[chunk & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+std::string bytesOf(const std::vector<T>& values) {
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// Builds the buffer, bufferViews and accessors of a small glTF file; the test writes the
+// rest (meshes, nodes, ...) as JSON. Accessors are numbered 0, 1, ... in the order added.
+class GltfFile {
+public:
+  int view(const std::string& bytes, size_t byteStride = 0) {
+    while (blob_.size() % 4 != 0) blob_ += '\0';
+    views_ += std::string(views_.empty() ? "" : ",") + R"({"buffer":0,"byteOffset":)" + std::to_string(blob_.size()) +
+              R"(,"byteLength":)" + std::to_string(bytes.size()) +
+              (byteStride ? R"(,"byteStride":)" + std::to_string(byteStride) : "") + "}";
+    blob_ += bytes;
+    return viewCount_++;
+  }
+
+  int accessor(int view, size_t byteOffset, int componentType, size_t count, const char* type) {
+    accessors_ += std::string(accessors_.empty() ? "" : ",") + R"({"bufferView":)" + std::to_string(view) +
+                  R"(,"byteOffset":)" + std::to_string(byteOffset) + R"(,"componentType":)" +
+                  std::to_string(componentType) + R"(,"count":)" + std::to_string(count) + R"(,"type":")" + type +
+                  "\"}";
+    return accessorCount_++;
+  }
+
+  int positions(const std::vector<glm::vec3>& p) {
+    return accessor(view(bytesOf(p)), 0, kFloat, p.size(), "VEC3");
+  }
+
+  int indices(const std::vector<uint32_t>& values, int componentType = kU32) {
+    std::string bytes;
+    for (uint32_t v : values) {
+      if (componentType == kU8) bytes += bytesOf(std::vector<uint8_t>{static_cast<uint8_t>(v)});
+      if (componentType == kU16) bytes += bytesOf(std::vector<uint16_t>{static_cast<uint16_t>(v)});
+      if (componentType == kU32) bytes += bytesOf(std::vector<uint32_t>{v});
+    }
+    return accessor(view(bytes), 0, componentType, values.size(), "SCALAR");
+  }
+
+  // A .gltf document with the buffer as a data: URI, or as `uri` when given.
+  std::string json(const std::string& rest, const std::string& uri = "") const {
+    return document(rest, R"({"byteLength":)" + std::to_string(blob_.size()) + R"(,"uri":")" +
+                              (uri.empty() ? "data:application/octet-stream;base64," + base64(blob_) : uri) + "\"}");
+  }
+
+  // A .glb: 12-byte header, JSON chunk padded with spaces, BIN chunk padded with zeros.
+  std::string glb(const std::string& rest) const {
+    std::string json = document(rest, R"({"byteLength":)" + std::to_string(blob_.size()) + "}");
+    while (json.size() % 4 != 0) json += ' ';
+    std::string bin = blob_;
+    while (bin.size() % 4 != 0) bin += '\0';
+    const auto u32 = [](size_t v) { return bytesOf(std::vector<uint32_t>{static_cast<uint32_t>(v)}); };
+    return "glTF" + u32(2) + u32(12 + 8 + json.size() + 8 + bin.size()) + u32(json.size()) + "JSON" + json +
+           u32(bin.size()) + "BIN" + std::string(1, '\0') + bin;
+  }
+
+  const std::string& blob() const { return blob_; }
+
+private:
+  std::string document(const std::string& rest, const std::string& buffer) const {
+    return R"({"asset":{"version":"2.0"},"buffers":[)" + buffer + R"(],"bufferViews":[)" + views_ +
+           R"(],"accessors":[)" + accessors_ + "]" + (rest.empty() ? "" : "," + rest) + "}";
+  }
+
+  std::string blob_;
+  std::string views_;
+  std::string accessors_;
+  int viewCount_ = 0;
+  int accessorCount_ = 0;
+};
+
+// One triangle in the z = 0 plane, as accessor 0.
+GltfFile triangleFile() {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  return file;
+}
+
+// A scene with one node showing mesh 0 (a single primitive on accessor 0).
+const std::string kOneTriangle =
+    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])";
+
+glm::vec3 toWorld(const Scene& scene, size_t instance, const glm::vec3& p) {
+  const wp::MeshInstance& i = scene.instances.at(instance);
+  return glm::vec3(i.objectToWorld * glm::vec4(p, 1.0f));
+}
+
+void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tolerance = 1e-5f) {
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+class SceneTest : public ::testing::Test {
+protected:
+  void SetUp() override {
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = fs::temp_directory_path() / ("wavepath_scene_test_" + std::to_string(getpid()) + "_" + test);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& content) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << content;
+    return path;
+  }
+
+  // Loads a .gltf written from `json`, returning the scene and what was printed on stderr.
+  Scene load(const std::string& json, std::string* printed = nullptr) {
+    const fs::path path = write("scene.gltf", json);
+    ::testing::internal::CaptureStderr();
+    Scene scene;
+    try {
+      scene = loadScene(path);
+    } catch (...) {
+      ::testing::internal::GetCapturedStderr();
+      throw;
+    }
+    const std::string out = ::testing::internal::GetCapturedStderr();
+    if (printed) *printed = out;
+    return scene;
+  }
+
+  // The message of the wp::Error that loading `path` throws, checked to be one line naming
+  // the file.
+  std::string errorOf(const fs::path& path) {
+    ::testing::internal::CaptureStderr();
+    std::string message = "(no error)";
+    try {
+      loadScene(path);
+    } catch (const wp::Error& e) {
+      message = e.what();
+    }
+    ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.rfind(path.string() + ":", 0), 0u) << message;
+    return message;
+  }
+
+  std::string errorOfJson(const std::string& json) { return errorOf(write("scene.gltf", json)); }
+
+  fs::path dir_;
+};
+
+// --- geometry and transforms ---
+
+TEST_F(SceneTest, ComposesTrsAndMatrixTransformsDownTheHierarchy) {
+  GltfFile file = triangleFile();
+  // Node 0: T(1,2,3) R(90 degrees about z) S(2); its child node 1: matrix = translate(1,0,0).
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"translation":[1,2,3],"rotation":[0,0,0.70710678,0.70710678],"scale":[2,2,2],"children":[1]},
+             {"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 1,0,0,1],"mesh":0}],
+    "scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.instances.size(), 1u);
+  // (1,0,0) -> child (2,0,0) -> scale (4,0,0) -> rotate (0,4,0) -> translate (1,6,3).
+  expectNear(toWorld(scene, 0, {1, 0, 0}), {1, 6, 3});
+  // (0,1,0) -> child (1,1,0) -> scale (2,2,0) -> rotate (-2,2,0) -> translate (-1,4,3).
+  expectNear(toWorld(scene, 0, {0, 1, 0}), {-1, 4, 3});
+}
+
+TEST_F(SceneTest, UsesTheDefaultSceneOrAllRootNodesWithoutScenes) {
+  GltfFile file = triangleFile();
+  const Scene chosen = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0,"translation":[5,0,0]},{"mesh":0,"translation":[7,0,0]}],
+    "scenes":[{"nodes":[0]},{"nodes":[1]}],"scene":1)"));
+  ASSERT_EQ(chosen.instances.size(), 1u);
+  expectNear(toWorld(chosen, 0, {0, 0, 0}), {7, 0, 0});
+
+  const Scene roots = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0,"children":[1]},{"mesh":0,"translation":[0,1,0]},{"mesh":0}])"));
+  EXPECT_EQ(roots.instances.size(), 3u);
+}
+
+class IndexTypeTest : public SceneTest, public ::testing::WithParamInterface<int> {};
+
+TEST_P(IndexTypeTest, ReadsIndices) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  file.indices({0, 1, 2, 0, 2, 3}, GetParam());
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(scene.meshes[0].positions.size(), 4u);
+}
+
+INSTANTIATE_TEST_SUITE_P(UnsignedByteShortInt, IndexTypeTest, ::testing::Values(kU8, kU16, kU32));
+
+TEST_F(SceneTest, NonIndexedPrimitivesUseTheVerticesInOrder) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}});
+  const Scene scene = load(file.json(kOneTriangle));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(scene.meshes[0].triangleCount(), 2u);
+}
+
+TEST_F(SceneTest, HonoursByteStrideAndBothByteOffsets) {
+  GltfFile file;
+  file.view(std::string(12, 'x'));  // so that the positions' view starts at byte 12
+  // Each 16-byte element: one float of padding, then x, y, z; the accessor skips the padding.
+  const std::vector<float> interleaved = {-1, 0, 0, 0, -1, 1, 0, 0, -1, 0, 1, 0};
+  const int view = file.view(bytesOf(interleaved), 16);
+  file.accessor(view, 4, kFloat, 3, "VEC3");
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  ASSERT_EQ(scene.meshes[0].positions.size(), 3u);
+  expectNear(scene.meshes[0].positions[0], {0, 0, 0});
+  expectNear(scene.meshes[0].positions[1], {1, 0, 0});
+  expectNear(scene.meshes[0].positions[2], {0, 1, 0});
+}
+
+TEST_F(SceneTest, LoadsBinaryGlb) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}});
+  file.indices({0, 1, 2}, kU16);
+  const fs::path path = write("scene.glb", file.glb(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+    "nodes":[{"mesh":0,"translation":[0,0,1]}],"scenes":[{"nodes":[0]}])"));
+  ::testing::internal::CaptureStderr();
+  const Scene scene = loadScene(path);
+  ::testing::internal::GetCapturedStderr();
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2}));
+  expectNear(toWorld(scene, 0, scene.meshes[0].positions[1]), {2, 0, 1});
+}
+
+TEST_F(SceneTest, LoadsAnExternalBufferBesideTheFile) {
+  GltfFile file = triangleFile();
+  write("triangle.bin", file.blob());
+  const Scene scene = load(file.json(kOneTriangle, "triangle.bin"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  expectNear(scene.meshes[0].positions[2], {0, 1, 0});
+}
+
+TEST_F(SceneTest, AMeshUsedByTwoNodesIsOneMeshWithTwoInstances) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0},{"mesh":0,"translation":[0,0,-3]}],"scenes":[{"nodes":[0,1]}])"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  ASSERT_EQ(scene.instances.size(), 2u);
+  EXPECT_EQ(scene.instances[0].mesh, 0u);
+  EXPECT_EQ(scene.instances[1].mesh, 0u);
+  expectNear(toWorld(scene, 1, {1, 0, 0}), {1, 0, -3});
+}
+
+TEST_F(SceneTest, MergesPrimitivesWithPerTriangleMaterials) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  file.positions({{0, 0, 1}, {1, 0, 1}, {0, 1, 1}});
+  const Scene scene = load(file.json(R"(
+    "materials":[{"name":"a"},{"name":"b"}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":1},
+                             {"attributes":{"POSITION":1},"material":0},
+                             {"attributes":{"POSITION":0},"material":1}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const wp::Mesh& mesh = scene.meshes[0];
+  EXPECT_EQ(mesh.positions.size(), 6u);  // primitives sharing accessor 0 share its vertices
+  EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 0, 1, 2}));
+  EXPECT_EQ(mesh.materials, (std::vector<uint32_t>{1, 0, 1}));
+}
+
+TEST_F(SceneTest, SkipsPointsAndLinesWithOneWarningPerMesh) {
+  GltfFile file = triangleFile();
+  std::string printed;
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"name":"Wire","primitives":[{"attributes":{"POSITION":0},"mode":0},
+                                           {"attributes":{"POSITION":0},"mode":1},
+                                           {"attributes":{"POSITION":0},"mode":4}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"),
+                           &printed);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].triangleCount(), 1u);
+  EXPECT_NE(printed.find("wavepath: warning: "), std::string::npos) << printed;
+  EXPECT_NE(printed.find("mesh 0 'Wire': skipped primitives 0 (POINTS), 1 (LINES)"), std::string::npos) << printed;
+  EXPECT_EQ(printed.find("warning", printed.find("warning") + 1), std::string::npos) << printed;
+}
+
+TEST_F(SceneTest, ConvertsStripsAndFansToTriangles) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}});
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":5},{"attributes":{"POSITION":0},"mode":6}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  // Strip: (0,1,2) (1,3,2) (2,3,4), every other triangle flipped to keep the winding.
+  // Fan: (1,2,0) (2,3,0) (3,4,0).
+  EXPECT_EQ(scene.meshes[0].indices,
+            (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 2, 3, 4, 1, 2, 0, 2, 3, 0, 3, 4, 0}));
+}
+
+// --- materials ---
+
+TEST_F(SceneTest, ConvertsMaterialsWithEmissiveStrength) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "extensionsUsed":["KHR_materials_emissive_strength"],
+    "materials":[{"name":"paint","doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,0.125,0.75]}},
+                 {"name":"lamp","emissiveFactor":[1,0.5,0.25],
+                  "extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":8}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.materials.size(), 2u);  // no default material: every primitive names one
+  const wp::Material& paint = scene.materials[0];
+  EXPECT_EQ(paint.name, "paint");
+  expectNear(paint.baseColor, {0.5f, 0.25f, 0.125f});
+  EXPECT_FLOAT_EQ(paint.alpha, 0.75f);
+  EXPECT_TRUE(paint.doubleSided);
+  EXPECT_FALSE(paint.isEmissive());
+  const wp::Material& lamp = scene.materials[1];
+  expectNear(lamp.emission, {8.0f, 4.0f, 2.0f});
+  expectNear(lamp.baseColor, {1, 1, 1});
+  EXPECT_FALSE(lamp.doubleSided);
+  expectNear(scene.skyRadiance, {0, 0, 0});
+}
+
+TEST_F(SceneTest, AppendsTheDefaultMaterialOnceForPrimitivesWithout) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "materials":[{"name":"red","pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1]}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}},{"attributes":{"POSITION":0},"material":0}]},
+              {"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0},{"mesh":1}],"scenes":[{"nodes":[0,1]}])"));
+  ASSERT_EQ(scene.materials.size(), 2u);
+  expectNear(scene.materials[1].baseColor, {1, 1, 1});
+  EXPECT_FALSE(scene.materials[1].isEmissive());
+  EXPECT_EQ(scene.meshes[0].materials, (std::vector<uint32_t>{1, 0}));
+  EXPECT_EQ(scene.meshes[1].materials, (std::vector<uint32_t>{1}));
+}
+
+TEST_F(SceneTest, LightsAScenesWithoutEmittersWithAWhiteSky) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0}, {1, 1, 1}, {2, 2, 2}});
+  file.indices({0, 1, 2});
+  file.indices({3, 4, 5});  // on a line: an emissive triangle without area emits nothing
+  std::string printed;
+  const Scene scene = load(file.json(R"(
+    "materials":[{"emissiveFactor":[1,1,1]}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]},
+              {"primitives":[{"attributes":{"POSITION":0},"indices":2,"material":0}]}],
+    "nodes":[{"mesh":0},{"mesh":1}],"scenes":[{"nodes":[0,1]}])"),
+                           &printed);
+  expectNear(scene.skyRadiance, {1, 1, 1});
+  EXPECT_NE(printed.find("wavepath: note: " + (dir_ / "scene.gltf").string() +
+                         " has no emissive triangles: lighting it with a constant white sky"),
+            std::string::npos)
+      << printed;
+}
+
+TEST_F(SceneTest, AnEmissiveSphereIsAnEmitterToo) {
+  GltfFile file = triangleFile();
+  std::string printed;
+  const Scene scene = load(file.json(R"(
+    "materials":[{"emissiveFactor":[1,1,1]}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0},{"extras":{"wavepath":{"shape":"sphere","radius":1,"material":0}}}],
+    "scenes":[{"nodes":[0,1]}])"),
+                           &printed);
+  expectNear(scene.skyRadiance, {0, 0, 0});
+  EXPECT_EQ(printed.find("white sky"), std::string::npos) << printed;
+}
+
+// --- cameras ---
+
+TEST_F(SceneTest, TakesTheFirstPerspectiveCameraOfTheWalk) {
+  GltfFile file = triangleFile();
+  std::string printed;
+  // The orthographic camera comes first and is skipped; the perspective camera sits under
+  // a parent that moves it by (0,0,-1) and turns it half a turn about y (to look down +z).
+  const Scene scene = load(file.json(R"(
+    "cameras":[{"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":10}},
+               {"type":"perspective","perspective":{"yfov":0.5,"aspectRatio":1.5,"znear":0.01}},
+               {"type":"perspective","perspective":{"yfov":1.0,"znear":0.01}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0},{"camera":0},
+             {"translation":[0,0,-1],"rotation":[0,1,0,0],"children":[3]},
+             {"camera":1,"translation":[1,2,3]},
+             {"camera":2}],
+    "scenes":[{"nodes":[0,1,2,4]}])"),
+                           &printed);
+  ASSERT_TRUE(scene.hasCamera);
+  expectNear(scene.camera.position, {-1, 2, -4});
+  expectNear(scene.camera.forward, {0, 0, 1});
+  expectNear(scene.camera.up, {0, 1, 0});
+  EXPECT_FLOAT_EQ(scene.camera.yfov, 0.5f);
+  EXPECT_FLOAT_EQ(scene.camera.aspectRatio, 1.5f);
+  EXPECT_NE(printed.find("node 1: camera 0: 'orthographic' cameras are not supported; skipped"), std::string::npos)
+      << printed;
+}
+
+TEST_F(SceneTest, OrthogonalisesTheUpVectorAgainstAShearedForward) {
+  GltfFile file = triangleFile();
+  // A shear that tilts the node's -z towards +y leaves +y not orthogonal to the view.
+  const Scene scene = load(file.json(R"(
+    "cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.01}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0},{"camera":0,"matrix":[1,0,0,0, 0,1,0,0, 0,-1,1,0, 0,0,5,1]}],
+    "scenes":[{"nodes":[0,1]}])"));
+  ASSERT_TRUE(scene.hasCamera);
+  EXPECT_FLOAT_EQ(scene.camera.aspectRatio, 0.0f);
+  expectNear(scene.camera.position, {0, 0, 5});
+  expectNear(scene.camera.forward, glm::normalize(glm::vec3(0, 1, -1)));
+  EXPECT_NEAR(glm::dot(scene.camera.up, scene.camera.forward), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(scene.camera.up), 1.0f, 1e-6f);
+  EXPECT_GT(scene.camera.up.y, 0.0f);
+}
+
+TEST_F(SceneTest, FramesTheSceneWhenThereIsNoCamera) {
+  GltfFile file;
+  file.positions({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}});
+  std::string printed;
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0,"translation":[10,0,0]},
+             {"translation":[10,0,-4],"extras":{"wavepath":{"shape":"sphere","radius":1}}},
+             {"extras":{"wavepath":{"shape":"plane"}}}],
+    "scenes":[{"nodes":[0,1,2]}])"),
+                           &printed);
+  EXPECT_FALSE(scene.hasCamera);
+  // Bounds (9,-1,-5)..(11,1,0), the plane ignored: centre (10,0,-2.5), radius sqrt(33)/2.
+  const glm::vec3 centre(10, 0, -2.5f);
+  const float radius = std::sqrt(33.0f) / 2;
+  expectNear(scene.camera.forward, {0, 0, -1});
+  expectNear(scene.camera.up, {0, 1, 0});
+  EXPECT_FLOAT_EQ(scene.camera.yfov, std::numbers::pi_v<float> / 4);
+  EXPECT_FLOAT_EQ(scene.camera.aspectRatio, 0.0f);
+  EXPECT_NEAR(scene.camera.position.x, centre.x, 1e-5f);
+  EXPECT_NEAR(scene.camera.position.y, centre.y, 1e-5f);
+  // The bounding sphere fits in the field of view, with a margin of at most a quarter.
+  const float distance = scene.camera.position.z - centre.z;
+  const float fits = radius / std::sin(std::numbers::pi_v<float> / 8);
+  EXPECT_GE(distance, fits);
+  EXPECT_LE(distance, 1.25f * fits);
+  EXPECT_NE(printed.find("wavepath: note: "), std::string::npos) << printed;
+  EXPECT_NE(printed.find("has no camera"), std::string::npos) << printed;
+}
+
+// --- analytic shapes in extras ---
+
+TEST_F(SceneTest, ReadsSpheresAndPlanesFromExtras) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "materials":[{"name":"a"},{"name":"b"}],
+    "nodes":[{"translation":[1,2,3],"scale":[2,2,2],
+              "extras":{"wavepath":{"shape":"sphere","radius":0.5,"material":1}}},
+             {"translation":[0,0,5],"rotation":[0.70710678,0,0,0.70710678],
+              "extras":{"wavepath":{"shape":"plane","material":0}}},
+             {"translation":[0,-1,0],"scale":[1,4,1],"extras":{"wavepath":{"shape":"plane"}}}],
+    "scenes":[{"nodes":[0,1,2]}])"));
+  ASSERT_EQ(scene.spheres.size(), 1u);
+  const wp::Sphere& sphere = scene.spheres[0];
+  EXPECT_EQ(sphere.material, 1u);
+  // Radius 0.5 in node units, node scale 2: a unit sphere centred at (1,2,3).
+  expectNear(glm::vec3(sphere.objectToWorld * glm::vec4(0, 0, 0, 1)), {1, 2, 3});
+  expectNear(glm::vec3(sphere.objectToWorld * glm::vec4(1, 0, 0, 1)), {2, 2, 3});
+
+  ASSERT_EQ(scene.planes.size(), 2u);
+  // A quarter turn about x takes the node's +y to +z.
+  expectNear(scene.planes[0].normal, {0, 0, 1});
+  EXPECT_NEAR(scene.planes[0].distance, 5.0f, 1e-5f);
+  EXPECT_EQ(scene.planes[0].material, 0u);
+  // A scaled node keeps a unit normal; the plane without a material gets the default one.
+  expectNear(scene.planes[1].normal, {0, 1, 0});
+  EXPECT_NEAR(scene.planes[1].distance, -1.0f, 1e-5f);
+  ASSERT_EQ(scene.materials.size(), 3u);
+  EXPECT_EQ(scene.planes[1].material, 2u);
+  EXPECT_TRUE(scene.meshes.empty());
+}
+
+// --- errors: one line naming the file, what is wrong and what to do ---
+
+TEST_F(SceneTest, RejectsAMissingFile) {
+  EXPECT_NE(errorOf(dir_ / "nothing.gltf").find("no such file"), std::string::npos);
+}
+
+TEST_F(SceneTest, RejectsADirectory) {
+  fs::create_directories(dir_ / "folder.gltf");
+  EXPECT_NE(errorOf(dir_ / "folder.gltf").find("is a directory"), std::string::npos);
+}
+
+TEST_F(SceneTest, RejectsMalformedJson) {
+  const std::string message = errorOfJson(R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0},)");
+  EXPECT_NE(message.find("is not a valid glTF 2.0 file"), std::string::npos) << message;
+  EXPECT_NE(message.find("parse error"), std::string::npos) << message;
+}
+
+TEST_F(SceneTest, RejectsATruncatedGlb) {
+  GltfFile file = triangleFile();
+  const std::string glb = file.glb(kOneTriangle);
+  for (size_t length : {size_t(3), size_t(16), size_t(40), glb.size() - 4}) {
+    const std::string message = errorOf(write("cut.glb", glb.substr(0, length)));
+    EXPECT_TRUE(message.find("not a valid glTF") != std::string::npos ||
+                message.find("not a binary glTF") != std::string::npos)
+        << length << ": " << message;
+  }
+}
+
+TEST_F(SceneTest, RejectsAMissingBufferFile) {
+  GltfFile file = triangleFile();
+  const std::string message = errorOfJson(file.json(kOneTriangle, "missing.bin"));
+  EXPECT_NE(message.find("missing.bin"), std::string::npos) << message;
+  EXPECT_NE(message.find("not found"), std::string::npos) << message;
+}
+
+TEST_F(SceneTest, RejectsAnIndexOutOfRange) {
+  GltfFile file = triangleFile();
+  file.indices({0, 1, 7}, kU16);
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"name":"Cube","primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("mesh 0 'Cube' primitive 0: index 7 is out of range (the POSITION accessor has 3 vertices)"),
+            std::string::npos)
+      << message;
+}
+
+TEST_F(SceneTest, RejectsAnAccessorOutsideItsBuffer) {
+  GltfFile file;
+  const int view = file.view(bytesOf(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  file.accessor(view, 12, kFloat, 3, "VEC3");
+  const std::string message = errorOfJson(file.json(kOneTriangle));
+  EXPECT_NE(message.find("accessor 0: 3 elements from byte offset 12"), std::string::npos) << message;
+  EXPECT_NE(message.find("do not fit"), std::string::npos) << message;
+}
+
+TEST_F(SceneTest, RejectsPositionsThatAreNotFloatVec3) {
+  GltfFile file;
+  file.indices({0, 1, 2}, kU16);
+  const std::string message = errorOfJson(file.json(kOneTriangle));
+  EXPECT_NE(message.find("POSITION must be FLOAT VEC3, not UNSIGNED_SHORT SCALAR"), std::string::npos) << message;
+}
+
+TEST_F(SceneTest, RejectsNonFinitePositions) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, NAN, 0}, {0, 1, 0}});
+  const std::string message = errorOfJson(file.json(kOneTriangle));
+  EXPECT_NE(message.find("vertex 1 of the POSITION accessor 0 is not finite"), std::string::npos) << message;
+  GltfFile infinite;
+  infinite.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, INFINITY}});
+  EXPECT_NE(errorOfJson(infinite.json(kOneTriangle)).find("is not finite"), std::string::npos);
+}
+
+TEST_F(SceneTest, RejectsASparseAccessor) {
+  GltfFile file = triangleFile();
+  std::string json = file.json(kOneTriangle);
+  const std::string accessorStart = R"("accessors":[{)";
+  json.insert(json.find(accessorStart) + accessorStart.size(),
+              R"("sparse":{"count":1,"indices":{"bufferView":0,"componentType":5125},"values":{"bufferView":0}},)");
+  EXPECT_NE(errorOfJson(json).find("sparse accessors are not supported"), std::string::npos);
+}
+
+TEST_F(SceneTest, RejectsAMissingMaterial) {
+  GltfFile file = triangleFile();
+  const std::string message = errorOfJson(file.json(R"(
+    "materials":[{}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":3}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("mesh 0 primitive 0: material 3 does not exist (the file has 1 material)"), std::string::npos)
+      << message;
+}
+
+TEST_F(SceneTest, RejectsANodeCycle) {
+  GltfFile file = triangleFile();
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"name":"a","mesh":0,"children":[1]},{"name":"b","children":[0]}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("node 0 'a': it is its own ancestor, so the node hierarchy has a cycle"), std::string::npos)
+      << message;
+}
+
+TEST_F(SceneTest, RejectsANodeWithTwoParents) {
+  GltfFile file = triangleFile();
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"children":[2]},{"children":[2]},{"name":"wheel","mesh":0}],"scenes":[{"nodes":[0,1]}])"));
+  EXPECT_NE(message.find("node 2 'wheel': it is a child of both node 0 and node 1, but a glTF node may have only one "
+                         "parent"),
+            std::string::npos)
+      << message;
+}
+
+TEST_F(SceneTest, RejectsAMissingChildNode) {
+  GltfFile file = triangleFile();
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0,"children":[5]}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("node 0: child node 5 does not exist (the file has 1 node)"), std::string::npos) << message;
+}
+
+TEST_F(SceneTest, RejectsAnUnsupportedRequiredExtension) {
+  GltfFile file = triangleFile();
+  const std::string message = errorOfJson(file.json(R"(
+    "extensionsUsed":["KHR_draco_mesh_compression","KHR_materials_emissive_strength"],
+    "extensionsRequired":["KHR_draco_mesh_compression","KHR_materials_emissive_strength"],)" +
+                                                    kOneTriangle));
+  EXPECT_NE(message.find("requires extension KHR_draco_mesh_compression, which wavepath does not support"),
+            std::string::npos)
+      << message;
+}
+
+TEST_F(SceneTest, WarnsOnceAboutUnsupportedUsedExtensions) {
+  GltfFile file = triangleFile();
+  std::string printed;
+  load(file.json(R"(
+    "extensionsUsed":["KHR_texture_transform","KHR_materials_emissive_strength","KHR_materials_clearcoat"],)" +
+                 kOneTriangle),
+       &printed);
+  EXPECT_NE(printed.find("extensions KHR_texture_transform, KHR_materials_clearcoat ignored, the image may differ "
+                         "from other viewers"),
+            std::string::npos)
+      << printed;
+}
+
+TEST_F(SceneTest, RejectsASceneWithNothingToRender) {
+  GltfFile file = triangleFile();
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":1}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("nothing to render"), std::string::npos) << message;
+  EXPECT_NE(errorOfJson(R"({"asset":{"version":"2.0"}})").find("nothing to render"), std::string::npos);
+}
+
+TEST_F(SceneTest, RejectsBadExtras) {
+  GltfFile file = triangleFile();
+  const auto errorOfShape = [&](const std::string& shape) {
+    return errorOfJson(file.json(R"("materials":[{}],"nodes":[{"name":"s","extras":{"wavepath":)" + shape +
+                                 R"(}}],"scenes":[{"nodes":[0]}])"));
+  };
+  EXPECT_NE(errorOfShape(R"({"shape":"cube"})").find("node 0 's': unknown extras.wavepath.shape 'cube'"),
+            std::string::npos);
+  EXPECT_NE(errorOfShape(R"({"radius":1})").find("extras.wavepath needs a \"shape\""), std::string::npos);
+  for (const std::string radius : {"0", "-1", "\"big\"", "[1]"}) {
+    EXPECT_NE(errorOfShape(R"({"shape":"sphere","radius":)" + radius + "}")
+                  .find("a sphere's extras.wavepath.radius must be a number > 0"),
+              std::string::npos)
+        << radius;
+  }
+  EXPECT_NE(errorOfShape(R"({"shape":"sphere"})").find("radius must be a number > 0"), std::string::npos);
+  for (const std::string material : {"1", "-1", "0.5", "\"a\""}) {
+    EXPECT_NE(errorOfShape(R"({"shape":"plane","material":)" + material + "}")
+                  .find("extras.wavepath.material must be an index of the materials array (the file has 1 "
+                        "material)"),
+              std::string::npos)
+        << material;
+  }
+}
+
+TEST_F(SceneTest, RejectsAbsurdlyDeepJsonWithoutCrashing) {
+  const std::string deep = R"({"asset":{"version":"2.0"},"extras":)" + std::string(100000, '[') +
+                           std::string(100000, ']') + "}";
+  EXPECT_NE(errorOfJson(deep).find("nests deeper"), std::string::npos);
+}
+
+// --- the shipped Cornell box ---
+
+TEST(CornellBox, MatchesThePublishedScene) {
+  const char* source = std::getenv("WAVEPATH_SOURCE_DIR");
+  ASSERT_NE(source, nullptr) << "WAVEPATH_SOURCE_DIR is not set";
+  ::testing::internal::CaptureStderr();
+  const Scene scene = loadScene(fs::path(source) / "assets" / "cornell-box.gltf");
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(printed, "");
+
+  // Floor, ceiling, three walls, two blocks of five quads and the light: 16 quads.
+  EXPECT_EQ(scene.meshes.size(), 8u);
+  EXPECT_EQ(scene.instances.size(), 8u);
+  size_t triangles = 0;
+  size_t emissive = 0;
+  glm::vec3 lo(1e9f);
+  glm::vec3 hi(-1e9f);
+  for (const wp::MeshInstance& instance : scene.instances) {
+    const wp::Mesh& mesh = scene.meshes[instance.mesh];
+    triangles += mesh.triangleCount();
+    for (uint32_t m : mesh.materials) emissive += scene.materials[m].isEmissive() ? 1 : 0;
+    for (const glm::vec3& p : mesh.positions) {
+      const glm::vec3 w(instance.objectToWorld * glm::vec4(p, 1.0f));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+  }
+  EXPECT_EQ(triangles, 32u);
+  EXPECT_EQ(emissive, 2u);
+  expectNear(lo, {0, 0, 0});
+  expectNear(hi, {0.556f, 0.5488f, 0.5592f});
+
+  ASSERT_EQ(scene.materials.size(), 4u);
+  const wp::Material& light = scene.materials[3];
+  expectNear(light.emission, {18.387f, 10.9873f, 2.75357f}, 1e-4f);
+  expectNear(light.baseColor, {0, 0, 0});
+  EXPECT_FALSE(light.doubleSided);
+  expectNear(scene.materials[1].baseColor, {0.570068f, 0.0430135f, 0.0443706f});
+  expectNear(scene.skyRadiance, {0, 0, 0});
+
+  ASSERT_TRUE(scene.hasCamera);
+  expectNear(scene.camera.position, {0.278f, 0.273f, -0.8f});
+  expectNear(scene.camera.forward, {0, 0, 1});
+  expectNear(scene.camera.up, {0, 1, 0});
+  EXPECT_NEAR(scene.camera.yfov, 39.3077f * std::numbers::pi_v<float> / 180.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(scene.camera.aspectRatio, 1.0f);
+
+  // The light faces down (its triangles wind clockwise seen from above).
+  const wp::Mesh& lightMesh = scene.meshes[scene.instances[7].mesh];
+  const glm::vec3 a = lightMesh.positions[lightMesh.indices[0]];
+  const glm::vec3 normal =
+      glm::cross(lightMesh.positions[lightMesh.indices[1]] - a, lightMesh.positions[lightMesh.indices[2]] - a);
+  EXPECT_LT(normal.y, 0.0f);
+  EXPECT_NEAR(a.y, 0.5483f, 1e-6f);
+}
+
+}  // namespace
