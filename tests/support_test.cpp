@@ -100,9 +100,31 @@ TEST(SphereBinning, CapSendsOutsideDirectionsToTheLastCell) {
   EXPECT_EQ(cap.cellOf({0, 0, 1}), 32);
   EXPECT_EQ(cap.cellOf({-1, 0, 0}), 32);
   EXPECT_LT(cap.cellOf({1, 0.1, 0}), 32);
-  // A uniform pdf puts (1 - 0.5) / 2 of the sphere inside the cap.
+  // A uniform pdf puts (1 - 0.5) / 2 of the sphere inside the cap, 3/4 outside.
   auto expected = cap.expectedCounts([](glm::dvec3) { return 1.0 / (4 * kPi); }, 1.0, 4);
-  EXPECT_NEAR(expected.back(), 0.75, 1e-12);
+  EXPECT_NEAR(expected.back(), 0.75, 1e-9);
+}
+
+// With the support given, a density with sharp edges inside cells (here the lune
+// a <= phi <= b, whose share of each cell is known exactly) integrates exactly per cell;
+// without it the cells cut by an edge are off by up to an eighth of their content.
+TEST(SphereBinning, SupportMakesSharpEdgesExact) {
+  const double a = 0.1, b = 1.0, width = 2 * kPi / 20;
+  glm::dvec3 afterA(-std::sin(a), std::cos(a), 0), beforeB(std::sin(b), -std::cos(b), 0);
+  auto lune = [&](glm::dvec3 d) { return glm::dot(d, afterA) >= 0 && glm::dot(d, beforeB) >= 0 ? 1.0 : 0.0; };
+  SphereBinning binning(7, 20);
+  auto withSupport = binning.expectedCounts(lune, 1.0, 4, {afterA, beforeB});
+  auto without = binning.expectedCounts(lune, 1.0, 4);
+  double worstWith = 0, worstWithout = 0;
+  for (int row = 0; row < 7; ++row)
+    for (int column = 0; column < 20; ++column) {
+      double overlap = std::max(0.0, std::min(b, (column + 1) * width) - std::max(a, column * width));
+      double exact = overlap * 2.0 / 7.0;
+      worstWith = std::max(worstWith, std::fabs(withSupport[row * 20 + column] - exact));
+      worstWithout = std::max(worstWithout, std::fabs(without[row * 20 + column] - exact));
+    }
+  EXPECT_LT(worstWith, 1e-9);
+  EXPECT_GT(worstWithout, 1e-3);
 }
 
 // Direction uniform on the +z hemisphere: a correct sampler for a pdf this test does not

@@ -16,7 +16,7 @@ constexpr double kEpsilon = 1e-15;
 constexpr int kMaxIterations = 1000000;
 // Absolute error allowed per row of a cell (in probability), and the deepest subdivision.
 constexpr double kSimpsonTolerance = 1e-10;
-constexpr int kSimpsonDepth = 24;
+constexpr int kSimpsonDepth = 12;
 
 // exp(-x) x^a / Gamma(a): the factor shared by the series and the continued fraction.
 double gammaPrefactor(double a, double x) { return std::exp(-x + a * std::log(x) - std::lgamma(a)); }
@@ -69,8 +69,8 @@ double sidakAlpha(double alpha, int testCount) { return 1.0 - std::pow(1.0 - alp
 
 std::string ChiSquareResult::describe() const {
   std::ostringstream out;
-  out << "chi2 = " << statistic << ", dof = " << degreesOfFreedom << ", p = " << pValue << ", pooled cells = "
-      << pooledCells;
+  out << "chi2 = " << statistic << ", dof = " << degreesOfFreedom << ", p = " << pValue
+      << ", pooled cells = " << pooledCells;
   if (!failure.empty()) out << ", failure: " << failure;
   return out.str();
 }
@@ -144,7 +144,7 @@ std::vector<double> SphereBinning::histogram(const std::vector<glm::dvec3>& dire
 }
 
 std::vector<std::pair<double, double>> SphereBinning::supportArcs(double cosTheta, double phi0, double phi1,
-                                                                   const std::vector<glm::dvec3>& support) const {
+                                                                  const std::vector<glm::dvec3>& support) const {
   // On the circle of constant cos(theta), dot(d, h) = r cos(phi - phiH) + c, so each
   // half-space keeps one arc of phi, which is intersected with what is left.
   double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
@@ -160,7 +160,8 @@ std::vector<std::pair<double, double>> SphereBinning::supportArcs(double cosThet
     std::vector<std::pair<double, double>> kept;
     for (auto [lo, hi] : arcs)
       for (int k = -1; k <= 1; ++k) {
-        double a = std::max(lo, center - halfWidth + k * kTwoPi), b = std::min(hi, center + halfWidth + k * kTwoPi);
+        double a = std::max(lo, center - halfWidth + k * kTwoPi),
+               b = std::min(hi, center + halfWidth + k * kTwoPi);
         if (a < b) kept.emplace_back(a, b);
       }
     arcs = std::move(kept);
@@ -184,7 +185,7 @@ double SphereBinning::ring(const Integrand& f, double cosTheta, double phi0, dou
 double SphereBinning::adaptiveSimpson(const Integrand& f, double phi0, double phi1, double a, double b, double fa,
                                       double fm, double fb, double whole, double tolerance, int depth) const {
   double m = 0.5 * (a + b);
-  double flm = ring(f, 0.5 * (a + m), phi0, phi1), frm = ring(f, 0.5 * (m + b), phi0, phi1);
+  double flm = thetaIntegrand(f, 0.5 * (a + m), phi0, phi1), frm = thetaIntegrand(f, 0.5 * (m + b), phi0, phi1);
   double left = (m - a) / 6.0 * (fa + 4.0 * flm + fm), right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
   double delta = left + right - whole;
   if (depth == 0 || std::fabs(delta) <= 15.0 * tolerance) return left + right + delta / 15.0;
@@ -192,14 +193,23 @@ double SphereBinning::adaptiveSimpson(const Integrand& f, double phi0, double ph
          adaptiveSimpson(f, phi0, phi1, m, b, fm, frm, fb, right, 0.5 * tolerance, depth - 1);
 }
 
-double SphereBinning::integrate(const Integrand& f, double cosTheta0, double cosTheta1, double phi0, double phi1) const {
-  // Solid angle is dcos(theta) dphi, so neither rule needs a Jacobian.
-  double rowHeight = (cosTheta1 - cosTheta0) / f.resolution;
+double SphereBinning::thetaIntegrand(const Integrand& f, double theta, double phi0, double phi1) const {
+  return ring(f, std::cos(theta), phi0, phi1) * std::sin(theta);
+}
+
+double SphereBinning::integrate(const Integrand& f, double cosTheta0, double cosTheta1, double phi0,
+                                double phi1) const {
+  // Integrated over theta rather than cos(theta), whose steps shrink to nothing in angle at
+  // the poles: a light corner or sliver at the pole of the grid would fall between them.
+  double theta0 = std::acos(std::clamp(cosTheta1, -1.0, 1.0)),
+         theta1 = std::acos(std::clamp(cosTheta0, -1.0, 1.0));
+  double step = (theta1 - theta0) / f.resolution;
   double sum = 0.0;
   for (int i = 0; i < f.resolution; ++i) {
-    double a = cosTheta0 + i * rowHeight, b = a + rowHeight;
-    double fa = ring(f, a, phi0, phi1), fm = ring(f, 0.5 * (a + b), phi0, phi1), fb = ring(f, b, phi0, phi1);
-    double whole = rowHeight / 6.0 * (fa + 4.0 * fm + fb);
+    double a = theta0 + i * step, b = a + step;
+    double fa = thetaIntegrand(f, a, phi0, phi1), fm = thetaIntegrand(f, 0.5 * (a + b), phi0, phi1);
+    double fb = thetaIntegrand(f, b, phi0, phi1);
+    double whole = step / 6.0 * (fa + 4.0 * fm + fb);
     sum += adaptiveSimpson(f, phi0, phi1, a, b, fa, fm, fb, whole, kSimpsonTolerance, kSimpsonDepth);
   }
   return sum;

@@ -58,14 +58,14 @@ public:
   std::vector<double> histogram(const std::vector<glm::dvec3>& directions) const;
 
   // sampleCount times the integral of `pdf` (over solid angle) across each cell. Each cell
-  // is cut into `resolution` rows of cos(theta); along each circle of constant cos(theta)
-  // the midpoint rule takes `resolution` points of phi, and across cos(theta) adaptive
-  // Simpson refines wherever that ring integral bends, e.g. where a light's corner or the
-  // pole of the grid is. The outside of a cap is integrated the same way. A pdf that drops
-  // to 0 across great circles, as the density of a hemisphere or of a light triangle does,
-  // passes their normals h as `support` (the pdf is 0 unless dot(d, h) >= 0 for every h):
-  // each ring then covers exactly the part inside the support, so thin slivers and edges
-  // count fully instead of falling between points.
+  // is cut into `resolution` rows of theta; along each circle of constant theta the
+  // midpoint rule takes `resolution` points of phi, and across theta adaptive Simpson
+  // refines wherever that ring integral bends, e.g. at a light's corner. The outside of a
+  // cap is integrated the same way. A pdf that drops to 0 across great circles, as the
+  // density of a hemisphere or of a light triangle does, passes their normals h as
+  // `support` (the pdf is 0 unless dot(d, h) >= 0 for every h): each ring then covers
+  // exactly the part inside the support, so thin slivers and edges count fully instead of
+  // falling between points.
   std::vector<double> expectedCounts(const std::function<double(glm::dvec3)>& pdf, double sampleCount,
                                      int resolution = 16, const std::vector<glm::dvec3>& support = {}) const;
 
@@ -80,6 +80,8 @@ private:
                                                      const std::vector<glm::dvec3>& support) const;
   // The integral of the pdf over phi in [phi0, phi1] on the circle cos(theta).
   double ring(const Integrand& f, double cosTheta, double phi0, double phi1) const;
+  // ring() * sin(theta): the integrand over theta, as solid angle is sin(theta) dtheta dphi.
+  double thetaIntegrand(const Integrand& f, double theta, double phi0, double phi1) const;
   double adaptiveSimpson(const Integrand& f, double phi0, double phi1, double a, double b, double fa, double fm,
                          double fb, double whole, double tolerance, int depth) const;
   double integrate(const Integrand& f, double cosTheta0, double cosTheta1, double phi0, double phi1) const;
