@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
   wp::BvhBuildOptions single;
   single.threads = 1;
   wp::BvhBuildOptions parallel;  // every hardware thread
-  std::printf("binned SAH, 32 bins, leaves <= %u, costs traversal %.1f intersection %.1f, %d runs\n",
+  std::printf("binned SAH, up to 32 bins, leaves <= %u, costs traversal %.1f intersection %.1f, %d runs\n",
               single.maxLeafSize, single.costs.traversal, single.costs.intersection, runs);
   report("binned, 1 thread", big.bounds.size(), measure(wp::buildBvh, big, single, runs));
   report("binned, all threads", big.bounds.size(), measure(wp::buildBvh, big, parallel, runs));

@@ -1,4 +1,4 @@
-// Binned SAH BVH builder (Wald 2007): 32 bins per axis over the centroid bounds, in-place
+// Binned SAH BVH builder (Wald 2007): up to 32 bins per axis over the centroid bounds, in-place
 // partition of compact primitive references, std::thread tasks for the top levels.
 #include "bvh/bvh_builder.h"
 

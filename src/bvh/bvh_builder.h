@@ -40,10 +40,11 @@ struct Bvh {
   std::vector<uint32_t> primIndices;  // input primitive indices in leaf order
 };
 
-// Builds a BVH with binned SAH (32 bins per axis over the centroid bounds). Requires
-// bounds.size() == centroids.size() < 2^31, every box non-empty and finite, finite centroids,
-// options.maxLeafSize >= 1 and bounds.size() <= maxLeafSize * 2^maxDepth (throws wp::Error
-// otherwise). Deterministic: the result does not depend on options.threads.
+// Builds a BVH with binned SAH (per axis up to 32 bins over the centroid bounds, fewer in
+// nodes of fewer primitives). Requires bounds.size() == centroids.size() < 2^31, every box
+// non-empty and finite, finite centroids, options.maxLeafSize >= 1 and
+// bounds.size() <= maxLeafSize * 2^maxDepth (throws wp::Error otherwise). Deterministic:
+// the result does not depend on options.threads.
 Bvh buildBvh(std::span<const Aabb> bounds, std::span<const glm::vec3> centroids,
              const BvhBuildOptions& options = {});
 

@@ -134,144 +134,163 @@ void buildLightTable(std::vector<gpu::GpuLight>& lights, const std::vector<doubl
   }
 }
 
+using Triangle = std::array<glm::vec3, 3>;
+
+Triangle triangleOf(const Mesh& mesh, size_t t) {
+  return {mesh.positions[mesh.indices[3 * t]], mesh.positions[mesh.indices[3 * t + 1]],
+          mesh.positions[mesh.indices[3 * t + 2]]};
+}
+
+double seconds(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 struct PackedMesh {
-  Aabb bounds;                    // object space
+  Aabb bounds;                     // object space
   std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
 };
 
-}  // namespace
-
-GpuScene packScene(const Scene& scene) {
-  GpuScene out;
-  double buildSeconds = 0.0;
-  double weightedSah = 0.0;
-
-  BvhBuildOptions meshOptions;
-  meshOptions.maxLeafSize = kMeshLeafSize;
-  meshOptions.maxDepth = WP_BVH_MAX_DEPTH;
-
-  std::vector<PackedMesh> packed(scene.meshes.size());
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
-    size_t n = mesh.triangleCount();
-    std::vector<Aabb> bounds(n);
-    std::vector<glm::vec3> centroids(n);
-    std::vector<uint32_t> ordinal(n, WP_INVALID);
-    for (size_t t = 0; t < n; ++t) {
-      glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
-      glm::vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
-      glm::vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
-      bounds[t].grow(a);
-      bounds[t].grow(b);
-      bounds[t].grow(c);
-      centroids[t] = (a + b + c) * (1.0f / 3.0f);
-      glm::vec3 normal = glm::cross(b - a, c - a);
-      bool degenerate = !(glm::dot(normal, normal) > 0.0f) || !isFinite(normal);
-      if (scene.materials[mesh.materials[t]].isEmissive() && !degenerate) {
-        ordinal[t] = static_cast<uint32_t>(packed[m].emitters.size());
-        packed[m].emitters.push_back(static_cast<uint32_t>(t));
-      }
+// Builds the bottom-level BVH of `mesh` and appends its nodes, triangles and range to `out`;
+// adds the build time to out.bvhBuildSeconds and its triangle-weighted SAH cost to weightedSah.
+PackedMesh packMesh(const Scene& scene, const Mesh& mesh, GpuScene& out, double& weightedSah) {
+  PackedMesh packed;
+  size_t n = mesh.triangleCount();
+  std::vector<Aabb> bounds(n);
+  std::vector<glm::vec3> centroids(n);
+  std::vector<uint32_t> ordinal(n, WP_INVALID);
+  for (size_t t = 0; t < n; ++t) {
+    Triangle v = triangleOf(mesh, t);
+    for (const glm::vec3& p : v) {
+      bounds[t].grow(p);
     }
-
-    auto start = Clock::now();
-    Bvh bvh = buildBvh(bounds, centroids, meshOptions);
-    buildSeconds += std::chrono::duration<double>(Clock::now() - start).count();
-    weightedSah += static_cast<double>(sahCost(bvh)) * static_cast<double>(n);
-    if (!bvh.nodes.empty()) {
-      packed[m].bounds = bvh.nodes[0].bounds;
-    }
-
-    GpuMeshRange& range = out.meshes.emplace_back();
-    range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
-    range.triangleCount = static_cast<uint32_t>(n);
-    range.rootNode = appendNodes(bvh, range.firstTriangle, out.nodes);
-    for (uint32_t t : bvh.primIndices) {
-      glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
-      glm::vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
-      glm::vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
-      out.triangles.push_back({glm::vec4(a, 0.0f), glm::vec4(b - a, 0.0f), glm::vec4(c - a, 0.0f),
-                               glm::uvec4(mesh.materials[t], ordinal[t], 0u, 0u)});
+    centroids[t] = (v[0] + v[1] + v[2]) * (1.0f / 3.0f);
+    glm::vec3 normal = glm::cross(v[1] - v[0], v[2] - v[0]);
+    bool degenerate = !(glm::dot(normal, normal) > 0.0f) || !isFinite(normal);
+    if (scene.materials[mesh.materials[t]].isEmissive() && !degenerate) {
+      ordinal[t] = static_cast<uint32_t>(packed.emitters.size());
+      packed.emitters.push_back(static_cast<uint32_t>(t));
     }
   }
-  out.triangleCount = out.triangles.size();
-  out.sahCost = out.triangleCount ? weightedSah / static_cast<double>(out.triangleCount) : 0.0;
 
-  // Candidate instances: their GPU record, world bounds and, for meshes, the mesh.
-  std::vector<gpu::GpuInstance> candidates;
+  BvhBuildOptions options;
+  options.maxLeafSize = kMeshLeafSize;
+  options.maxDepth = WP_BVH_MAX_DEPTH;
+  auto start = Clock::now();
+  Bvh bvh = buildBvh(bounds, centroids, options);
+  out.bvhBuildSeconds += seconds(start);
+  weightedSah += static_cast<double>(sahCost(bvh)) * static_cast<double>(n);
+  if (!bvh.nodes.empty()) {
+    packed.bounds = bvh.nodes[0].bounds;
+  }
+
+  GpuMeshRange& range = out.meshes.emplace_back();
+  range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
+  range.triangleCount = static_cast<uint32_t>(n);
+  range.rootNode = appendNodes(bvh, range.firstTriangle, out.nodes);
+  for (uint32_t t : bvh.primIndices) {
+    Triangle v = triangleOf(mesh, t);
+    out.triangles.push_back({glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
+                             glm::uvec4(mesh.materials[t], ordinal[t], 0u, 0u)});
+  }
+  return packed;
+}
+
+// Instances before the top-level build: their GPU record, world bounds and source.
+struct InstanceCandidates {
+  std::vector<gpu::GpuInstance> records;
   std::vector<Aabb> worldBounds;
-  std::vector<uint32_t> candidateMesh;  // WP_INVALID for spheres
-  std::vector<glm::mat4> candidateTransform;
-  auto addCandidate = [&](const glm::mat4& objectToWorld, const Aabb& objectBounds, glm::uvec4 info,
-                          uint32_t mesh, const std::string& what) {
-    glm::mat4 worldToObject = glm::inverse(objectToWorld);
-    bool invertible = glm::determinant(objectToWorld) != 0.0f;
+  std::vector<uint32_t> mesh;  // WP_INVALID for spheres
+  std::vector<glm::mat4> objectToWorld;
+
+  void add(const glm::mat4& toWorld, const Aabb& objectBounds, glm::uvec4 info, uint32_t meshIndex,
+           const std::string& what) {
+    glm::mat4 toObject = glm::inverse(toWorld);
+    bool invertible = glm::determinant(toWorld) != 0.0f;
     for (int col = 0; col < 4 && invertible; ++col) {
-      invertible = isFinite(glm::vec3(worldToObject[col])) && std::isfinite(worldToObject[col].w);
+      invertible = isFinite(glm::vec3(toObject[col])) && std::isfinite(toObject[col].w);
     }
     if (!invertible) {
       warn(what + " has a singular transform (a zero scale?) and is left out");
       return;
     }
-    candidates.push_back(makeInstance(worldToObject, info));
-    worldBounds.push_back(transformBox(objectToWorld, objectBounds));
-    candidateMesh.push_back(mesh);
-    candidateTransform.push_back(objectToWorld);
-  };
+    records.push_back(makeInstance(toObject, info));
+    worldBounds.push_back(transformBox(toWorld, objectBounds));
+    mesh.push_back(meshIndex);
+    objectToWorld.push_back(toWorld);
+  }
+};
+
+// Appends the world-space lights of one mesh instance and their selection weights.
+void appendLights(const Scene& scene, const Mesh& mesh, const PackedMesh& packed, const glm::mat4& toWorld,
+                  std::vector<gpu::GpuLight>& lights, std::vector<double>& power) {
+  for (uint32_t t : packed.emitters) {
+    Triangle v = triangleOf(mesh, t);
+    for (glm::vec3& p : v) {
+      p = glm::vec3(toWorld * glm::vec4(p, 1.0f));
+    }
+    const Material& material = scene.materials[mesh.materials[t]];
+    float area = 0.5f * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
+    lights.push_back({glm::vec4(v[0], area), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
+                      glm::vec4(material.emission, 0.0f), glm::uvec4(0u, material.doubleSided ? 1u : 0u, 0u, 0u)});
+    power.push_back(static_cast<double>(luminance(material.emission)) * area * (material.doubleSided ? 2.0 : 1.0));
+  }
+}
+
+}  // namespace
+
+GpuScene packScene(const Scene& scene) {
+  GpuScene out;
+  double weightedSah = 0.0;
+  std::vector<PackedMesh> packed;
+  for (const Mesh& mesh : scene.meshes) {
+    packed.push_back(packMesh(scene, mesh, out, weightedSah));
+  }
+  out.triangleCount = out.triangles.size();
+  out.sahCost = out.triangleCount ? weightedSah / static_cast<double>(out.triangleCount) : 0.0;
+
+  InstanceCandidates candidates;
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const MeshInstance& inst = scene.instances[i];
     const GpuMeshRange& range = out.meshes[inst.mesh];
-    if (range.triangleCount == 0) {
-      continue;
+    if (range.triangleCount > 0) {
+      candidates.add(inst.objectToWorld, packed[inst.mesh].bounds,
+                     glm::uvec4(WP_INSTANCE_MESH, range.rootNode, 0u, 0u), inst.mesh,
+                     "instance " + std::to_string(i) + " of mesh '" + scene.meshes[inst.mesh].name + "'");
     }
-    addCandidate(inst.objectToWorld, packed[inst.mesh].bounds,
-                 glm::uvec4(WP_INSTANCE_MESH, range.rootNode, 0u, 0u), inst.mesh,
-                 "instance " + std::to_string(i) + " of mesh '" + scene.meshes[inst.mesh].name + "'");
   }
   Aabb unitCube{glm::vec3(-1.0f), glm::vec3(1.0f)};
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
-    addCandidate(scene.spheres[i].objectToWorld, unitCube,
-                 glm::uvec4(WP_INSTANCE_SPHERE, scene.spheres[i].material, WP_INVALID, 0u), WP_INVALID,
-                 "sphere " + std::to_string(i));
+    candidates.add(scene.spheres[i].objectToWorld, unitCube,
+                   glm::uvec4(WP_INSTANCE_SPHERE, scene.spheres[i].material, WP_INVALID, 0u), WP_INVALID,
+                   "sphere " + std::to_string(i));
   }
 
-  std::vector<glm::vec3> centers(worldBounds.size());
+  std::vector<glm::vec3> centers;
   Aabb sceneBounds;
-  for (size_t i = 0; i < worldBounds.size(); ++i) {
-    centers[i] = worldBounds[i].center();
-    sceneBounds.grow(worldBounds[i]);
+  for (const Aabb& b : candidates.worldBounds) {
+    centers.push_back(b.center());
+    sceneBounds.grow(b);
   }
-  BvhBuildOptions instanceOptions;
-  instanceOptions.maxLeafSize = kInstanceLeafSize;
-  instanceOptions.maxDepth = WP_BVH_MAX_DEPTH;
-  auto start = Clock::now();
-  Bvh tlas = buildBvh(worldBounds, centers, instanceOptions);
-  buildSeconds += std::chrono::duration<double>(Clock::now() - start).count();
-  out.tlasRoot = appendNodes(tlas, 0, out.nodes);
-  out.bvhBuildSeconds = buildSeconds;
   if (!sceneBounds.isEmpty()) {
     out.boundsMin = sceneBounds.min;
     out.boundsMax = sceneBounds.max;
   }
+  BvhBuildOptions options;
+  options.maxLeafSize = kInstanceLeafSize;
+  options.maxDepth = WP_BVH_MAX_DEPTH;
+  auto start = Clock::now();
+  Bvh tlas = buildBvh(candidates.worldBounds, centers, options);
+  out.bvhBuildSeconds += seconds(start);
+  out.tlasRoot = appendNodes(tlas, 0, out.nodes);
 
+  // Instances in top-level leaf order, each mesh instance followed by its block of lights.
   std::vector<double> power;
   for (uint32_t c : tlas.primIndices) {
-    gpu::GpuInstance inst = candidates[c];
-    if (candidateMesh[c] != WP_INVALID) {
+    gpu::GpuInstance inst = candidates.records[c];
+    uint32_t mesh = candidates.mesh[c];
+    if (mesh != WP_INVALID) {
       inst.info.z = static_cast<uint32_t>(out.lights.size());
-      const Mesh& mesh = scene.meshes[candidateMesh[c]];
-      const glm::mat4& m = candidateTransform[c];
-      for (uint32_t t : packed[candidateMesh[c]].emitters) {
-        glm::vec3 a(m * glm::vec4(mesh.positions[mesh.indices[3 * t]], 1.0f));
-        glm::vec3 b(m * glm::vec4(mesh.positions[mesh.indices[3 * t + 1]], 1.0f));
-        glm::vec3 d(m * glm::vec4(mesh.positions[mesh.indices[3 * t + 2]], 1.0f));
-        const Material& material = scene.materials[mesh.materials[t]];
-        float area = 0.5f * glm::length(glm::cross(b - a, d - a));
-        out.lights.push_back({glm::vec4(a, area), glm::vec4(b - a, 0.0f), glm::vec4(d - a, 0.0f),
-                              glm::vec4(material.emission, 0.0f),
-                              glm::uvec4(0u, material.doubleSided ? 1u : 0u, 0u, 0u)});
-        power.push_back(static_cast<double>(luminance(material.emission)) * area *
-                        (material.doubleSided ? 2.0 : 1.0));
-      }
+      appendLights(scene, scene.meshes[mesh], packed[mesh], candidates.objectToWorld[c], out.lights, power);
     }
     out.instances.push_back(inst);
   }
