@@ -64,7 +64,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   uint lightCount = params.mode.w;
 
   SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t);
-  GpuMaterial m = materials[s.material];
+  GpuMaterial m = WP_MATERIAL(s.material);
   vec3 wo = -direction;
 
   vec3 emission = emittedRadiance(xyz(m.emission), m.emission.w != 0.0f, s.normal, wo);
@@ -75,7 +75,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       if (mode == WP_MODE_NEE) {
         weight = 0.0f;
       } else if (mode == WP_MODE_MIS) {
-        weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(lights[s.light], t * t, dot(s.normal, wo)));
+        weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(WP_LIGHT(s.light), t * t, dot(s.normal, wo)));
       }
     }
     r.radiance = throughput * emission * weight;

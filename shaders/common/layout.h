@@ -10,22 +10,27 @@ WP_BEGIN
 
 #define WP_WORKGROUP_SIZE 64
 
-// Storage buffer binding indices (set 0) for the Vulkan stages; OpenCL passes them as
-// kernel arguments in the same order.
-#define WP_BINDING_PARAMS 0        // RenderParams (uniform)
-#define WP_BINDING_NODES 1         // BvhNode[]: all bottom-level BVHs, then the top level
-#define WP_BINDING_TRIANGLES 2     // GpuTriangle[] in BVH leaf order
-#define WP_BINDING_INSTANCES 3     // GpuInstance[]
-#define WP_BINDING_PLANES 4        // GpuPlane[]
-#define WP_BINDING_MATERIALS 5     // GpuMaterial[]
-#define WP_BINDING_LIGHTS 6        // GpuLight[]
-#define WP_BINDING_RAYS 7          // PathRay[2 * maxPaths]: two ping-pong queues
-#define WP_BINDING_HITS 8          // HitRecord[maxPaths]
-#define WP_BINDING_SHADOW_RAYS 9   // ShadowRay[maxPaths]
-#define WP_BINDING_PATH_RADIANCE 10  // vec4[maxPaths]: radiance of each path this pass
-#define WP_BINDING_COUNTERS 11     // QueueCounters
-#define WP_BINDING_ACCUM 12        // vec4[2 * pixels]: sum of radiance, sum of squares
-#define WP_BINDING_COUNT 13u
+// Binding indices (set 0) of the Vulkan stages; OpenCL passes the same buffers as kernel
+// arguments. Read-only data is bound as uniform texel buffers (RGBA32UI): on lavapipe a
+// texel fetch is a SIMD gather while a storage-buffer load is a per-lane scalar loop, and
+// on GPUs it goes through the texture cache. Writes go through storage buffers.
+#define WP_BINDING_PARAMS 0         // RenderParams (uniform)
+#define WP_BINDING_NODES 1          // BvhNode[] (texels): all bottom-level BVHs, then the top level
+#define WP_BINDING_TRIANGLES 2      // GpuTriangle[] (texels) in BVH leaf order
+#define WP_BINDING_INSTANCES 3      // GpuInstance[] (texels)
+#define WP_BINDING_PLANES 4         // GpuPlane[] (texels)
+#define WP_BINDING_MATERIALS 5      // GpuMaterial[] (texels)
+#define WP_BINDING_LIGHTS 6         // GpuLight[] (texels)
+#define WP_BINDING_RAYS 7           // PathRay[2 * maxPaths]: two ping-pong queues (written)
+#define WP_BINDING_HITS 8           // HitRecord[maxPaths] (written)
+#define WP_BINDING_SHADOW_RAYS 9    // ShadowRay[maxPaths] (written)
+#define WP_BINDING_PATH_RADIANCE 10 // vec4[maxPaths]: radiance of each path this pass
+#define WP_BINDING_COUNTERS 11      // QueueCounters
+#define WP_BINDING_ACCUM 12         // vec4[2 * pixels]: sum of radiance, sum of squares
+#define WP_BINDING_RAYS_READ 13     // the rays buffer again, as texels
+#define WP_BINDING_HITS_READ 14     // the hits buffer again, as texels
+#define WP_BINDING_SHADOW_RAYS_READ 15  // the shadow-ray buffer again, as texels
+#define WP_BINDING_COUNT 16u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
@@ -37,6 +42,17 @@ WP_BEGIN
 #define WP_INSTANCE_SPHERE 1u  // unit sphere at the object-space origin
 
 #define WP_INVALID 0xffffffffu
+
+// Element access to the read-only scene buffers. C++ and OpenCL index arrays passed as
+// arguments; GLSL (shaders/vulkan/bindings.glsl) fetches texels.
+#if defined(__cplusplus) || defined(__OPENCL_VERSION__)
+#define WP_NODE(i) nodes[i]
+#define WP_TRIANGLE(i) triangles[i]
+#define WP_INSTANCE(i) instances[i]
+#define WP_PLANE(i) planes[i]
+#define WP_MATERIAL(i) materials[i]
+#define WP_LIGHT(i) lights[i]
+#endif
 
 // BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
 // count 0 is an interior node whose index is `index`; a child with count > 0 is a leaf

@@ -33,7 +33,8 @@ WP_FN vec3 emittedRadiance(vec3 emission, bool doubleSided, vec3 lightNormal, ve
 WP_FN uint selectLight(WP_LIGHT_BUFFER uint lightCount, float u) {
   float scaled = u * toFloat(lightCount);
   uint i = min(toUint(scaled), lightCount - 1u);
-  return (scaled - toFloat(i)) < lights[i].edge2.w ? i : lights[i].info.x;
+  GpuLight candidate = WP_LIGHT(i);
+  return (scaled - toFloat(i)) < candidate.edge2.w ? i : candidate.info.x;
 }
 
 // Solid-angle density of sampling a given point on `light` (selection included) from a
@@ -63,7 +64,7 @@ WP_FN LightSample sampleLightTriangle(GpuLight light, vec3 position, vec2 u) {
 
 // Chooses a light by power and a point on it: u.x selects, (u.y, u.z) place the point.
 WP_FN LightSample sampleLight(WP_LIGHT_BUFFER uint lightCount, vec3 position, vec3 u) {
-  GpuLight light = lights[selectLight(WP_LIGHT_BUFFER_ARG lightCount, u.x)];
+  GpuLight light = WP_LIGHT(selectLight(WP_LIGHT_BUFFER_ARG lightCount, u.x));
   LightSample s = sampleLightTriangle(light, position, make_vec2(u.y, u.z));
   s.pdf *= light.edge1.w;
   return s;

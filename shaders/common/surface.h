@@ -42,18 +42,18 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   s.position = position;
   s.light = WP_INVALID;
   if ((instanceField & WP_HIT_PLANE) != 0u) {
-    GpuPlane plane = planes[instanceField & ~WP_HIT_PLANE];
+    GpuPlane plane = WP_PLANE(instanceField & ~WP_HIT_PLANE);
     s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
     s.material = plane.info.x;
     return s;
   }
-  GpuInstance inst = instances[instanceField];
+  GpuInstance inst = WP_INSTANCE(instanceField);
   if (inst.info.x == WP_INSTANCE_SPHERE) {
     s.normal = normalToWorld(inst, pointToObject(inst, position));
     s.material = inst.info.y;
     return s;
   }
-  GpuTriangle tri = triangles[primitive];
+  GpuTriangle tri = WP_TRIANGLE(primitive);
   vec3 e1 = make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z);
   vec3 e2 = make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z);
   s.normal = normalToWorld(inst, cross(e1, e2));

@@ -6,8 +6,8 @@
 #include "intersect.h"
 #include "layout.h"
 
-// GLSL reads the scene from global buffers named nodes, triangles, instances and planes that
-// the including shader declares; C++ and OpenCL pass them as the leading arguments.
+// Scene elements are read through WP_NODE(i) and friends (layout.h): C++ and OpenCL index the
+// arrays passed as the leading arguments, GLSL fetches from texel buffers it declares.
 #if defined(__cplusplus) || defined(__OPENCL_VERSION__)
 #define WP_SCENE_BUFFERS                                                               \
   WP_GLOBAL_PTR(BvhNode) nodes, WP_GLOBAL_PTR(GpuTriangle) triangles,                \
@@ -83,7 +83,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
   hit.primitive = WP_INVALID;
   // Planes first: a near plane shortens every box test that follows.
   for (uint i = 0u; i < planeCount; ++i) {
-    vec4 plane = planes[i].normalDistance;
+    vec4 plane = WP_PLANE(i).normalDistance;
     float t = intersectPlane(make_vec3(plane.x, plane.y, plane.z), plane.w, origin, direction, hit.t);
     if (t < hit.t) {
       hit.t = t;
@@ -99,7 +99,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
   uint sp = 0u;
   uint node = tlasRoot;
   for (;;) {
-    ChildHits c = intersectChildren(nodes[node], origin, invDir, hit.t);
+    ChildHits c = intersectChildren(WP_NODE(node), origin, invDir, hit.t);
     uint next = WP_INVALID;
     for (uint k = 0u; k < c.count; ++k) {
       uint index = k == 0u ? c.children.x : c.children.y;
@@ -117,7 +117,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
         continue;
       }
       for (uint i = index; i < index + count; ++i) {
-        GpuInstance inst = instances[i];
+        GpuInstance inst = WP_INSTANCE(i);
         vec3 o = instanceRayOrigin(inst, origin);
         vec3 d = instanceRayDirection(inst, direction);
         if (inst.info.x == WP_INSTANCE_SPHERE) {
@@ -136,7 +136,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
         uint stackBase = sp;
         uint blasNode = inst.info.y;
         for (;;) {
-          ChildHits b = intersectChildren(nodes[blasNode], o, objectInvDir, hit.t);
+          ChildHits b = intersectChildren(WP_NODE(blasNode), o, objectInvDir, hit.t);
           uint blasNext = WP_INVALID;
           for (uint m = 0u; m < b.count; ++m) {
             uint first = m == 0u ? b.children.x : b.children.y;
@@ -154,7 +154,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
               continue;
             }
             for (uint j = first; j < first + triangleCount; ++j) {
-              GpuTriangle tri = triangles[j];
+              GpuTriangle tri = WP_TRIANGLE(j);
               float t = intersectTriangle(o, d, make_vec3(tri.v0.x, tri.v0.y, tri.v0.z),
                                           make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z),
                                           make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z), hit.t);

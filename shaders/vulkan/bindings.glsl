@@ -1,23 +1,106 @@
-// Buffer declarations shared by every Vulkan stage (one descriptor set, see layout.h).
-// The portable headers read the scene through these global names.
-
+// Buffer declarations shared by every Vulkan stage (one descriptor set, see layout.h), and
+// the texel-fetch loaders behind the WP_NODE(i)-style accessors of the portable headers.
 #include "common/layout.h"
 
 layout(local_size_x = WP_WORKGROUP_SIZE) in;
 
 layout(push_constant) uniform Push { PassConstants pc; };
 layout(std140, binding = WP_BINDING_PARAMS) uniform Params { RenderParams params; };
-layout(std430, binding = WP_BINDING_NODES) readonly buffer Nodes { BvhNode nodes[]; };
-layout(std430, binding = WP_BINDING_TRIANGLES) readonly buffer Triangles { GpuTriangle triangles[]; };
-layout(std430, binding = WP_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
-layout(std430, binding = WP_BINDING_PLANES) readonly buffer Planes { GpuPlane planes[]; };
-layout(std430, binding = WP_BINDING_MATERIALS) readonly buffer Materials { GpuMaterial materials[]; };
-layout(std430, binding = WP_BINDING_LIGHTS) readonly buffer Lights { GpuLight lights[]; };
-layout(std430, binding = WP_BINDING_RAYS) buffer Rays { PathRay rays[]; };
-layout(std430, binding = WP_BINDING_HITS) buffer Hits { HitRecord hits[]; };
-layout(std430, binding = WP_BINDING_SHADOW_RAYS) buffer ShadowRays { ShadowRay shadowRays[]; };
+
+layout(binding = WP_BINDING_NODES) uniform usamplerBuffer nodeTexels;
+layout(binding = WP_BINDING_TRIANGLES) uniform usamplerBuffer triangleTexels;
+layout(binding = WP_BINDING_INSTANCES) uniform usamplerBuffer instanceTexels;
+layout(binding = WP_BINDING_PLANES) uniform usamplerBuffer planeTexels;
+layout(binding = WP_BINDING_MATERIALS) uniform usamplerBuffer materialTexels;
+layout(binding = WP_BINDING_LIGHTS) uniform usamplerBuffer lightTexels;
+layout(binding = WP_BINDING_RAYS_READ) uniform usamplerBuffer rayTexels;
+layout(binding = WP_BINDING_HITS_READ) uniform usamplerBuffer hitTexels;
+layout(binding = WP_BINDING_SHADOW_RAYS_READ) uniform usamplerBuffer shadowRayTexels;
+
+layout(std430, binding = WP_BINDING_RAYS) writeonly buffer Rays { PathRay rays[]; };
+layout(std430, binding = WP_BINDING_HITS) writeonly buffer Hits { HitRecord hits[]; };
+layout(std430, binding = WP_BINDING_SHADOW_RAYS) writeonly buffer ShadowRays { ShadowRay shadowRays[]; };
 layout(std430, binding = WP_BINDING_PATH_RADIANCE) buffer PathRadiance { vec4 pathRadiance[]; };
 layout(std430, binding = WP_BINDING_COUNTERS) buffer Counters { uint counters[]; };
 layout(std430, binding = WP_BINDING_ACCUM) buffer Accumulation { vec4 accumulation[]; };
+
+// Texel t of element i of a struct `stride` texels long, as floats or as uints.
+#define WP_FLOATS(texels, i, stride, t) uintBitsToFloat(texelFetch(texels, int((i) * (stride) + (t))))
+#define WP_UINTS(texels, i, stride, t) texelFetch(texels, int((i) * (stride) + (t)))
+
+BvhNode loadNode(uint i) {
+  BvhNode n;
+  n.leftMin = WP_FLOATS(nodeTexels, i, 4u, 0u);
+  n.leftMax = WP_FLOATS(nodeTexels, i, 4u, 1u);
+  n.rightMin = WP_FLOATS(nodeTexels, i, 4u, 2u);
+  n.rightMax = WP_FLOATS(nodeTexels, i, 4u, 3u);
+  return n;
+}
+
+GpuTriangle loadTriangle(uint i) {
+  GpuTriangle t;
+  t.v0 = WP_FLOATS(triangleTexels, i, 4u, 0u);
+  t.edge1 = WP_FLOATS(triangleTexels, i, 4u, 1u);
+  t.edge2 = WP_FLOATS(triangleTexels, i, 4u, 2u);
+  t.info = WP_UINTS(triangleTexels, i, 4u, 3u);
+  return t;
+}
+
+GpuInstance loadInstance(uint i) {
+  GpuInstance inst;
+  inst.worldToObject0 = WP_FLOATS(instanceTexels, i, 4u, 0u);
+  inst.worldToObject1 = WP_FLOATS(instanceTexels, i, 4u, 1u);
+  inst.worldToObject2 = WP_FLOATS(instanceTexels, i, 4u, 2u);
+  inst.info = WP_UINTS(instanceTexels, i, 4u, 3u);
+  return inst;
+}
+
+GpuPlane loadPlane(uint i) {
+  GpuPlane p;
+  p.normalDistance = WP_FLOATS(planeTexels, i, 2u, 0u);
+  p.info = WP_UINTS(planeTexels, i, 2u, 1u);
+  return p;
+}
+
+GpuMaterial loadMaterial(uint i) {
+  GpuMaterial m;
+  m.baseColor = WP_FLOATS(materialTexels, i, 2u, 0u);
+  m.emission = WP_FLOATS(materialTexels, i, 2u, 1u);
+  return m;
+}
+
+GpuLight loadLight(uint i) {
+  GpuLight l;
+  l.v0 = WP_FLOATS(lightTexels, i, 5u, 0u);
+  l.edge1 = WP_FLOATS(lightTexels, i, 5u, 1u);
+  l.edge2 = WP_FLOATS(lightTexels, i, 5u, 2u);
+  l.emission = WP_FLOATS(lightTexels, i, 5u, 3u);
+  l.info = WP_UINTS(lightTexels, i, 5u, 4u);
+  return l;
+}
+
+PathRay loadRay(uint i) {
+  PathRay r;
+  r.origin = WP_FLOATS(rayTexels, i, 4u, 0u);
+  r.direction = WP_FLOATS(rayTexels, i, 4u, 1u);
+  r.throughput = WP_FLOATS(rayTexels, i, 4u, 2u);
+  r.state = WP_UINTS(rayTexels, i, 4u, 3u);
+  return r;
+}
+
+ShadowRay loadShadowRay(uint i) {
+  ShadowRay s;
+  s.origin = WP_FLOATS(shadowRayTexels, i, 3u, 0u);
+  s.direction = WP_FLOATS(shadowRayTexels, i, 3u, 1u);
+  s.contribution = WP_FLOATS(shadowRayTexels, i, 3u, 2u);
+  return s;
+}
+
+#define WP_NODE(i) loadNode(i)
+#define WP_TRIANGLE(i) loadTriangle(i)
+#define WP_INSTANCE(i) loadInstance(i)
+#define WP_PLANE(i) loadPlane(i)
+#define WP_MATERIAL(i) loadMaterial(i)
+#define WP_LIGHT(i) loadLight(i)
 
 uint bounceParity() { return pc.pass.w & 1u; }

@@ -9,7 +9,7 @@ void main() {
   if (i >= counters[WP_COUNTER_SHADOW_RAYS + bounceParity()]) {
     return;
   }
-  ShadowRay s = shadowRays[i];
+  ShadowRay s = loadShadowRay(i);
   if (!traceAny(params.counts.y, params.counts.x, s.origin.xyz, s.direction.xyz, s.direction.w)) {
     pathRadiance[floatBitsToUint(s.origin.w)].xyz += s.contribution.xyz;
   }

@@ -10,7 +10,7 @@ void main() {
   if (i >= counters[WP_COUNTER_RAYS + queue]) {
     return;
   }
-  PathRay ray = rays[queue * params.counts.w + i];
+  PathRay ray = loadRay(queue * params.counts.w + i);
   Hit h = traceClosest(params.counts.y, params.counts.x, ray.origin.xyz, ray.direction.xyz, WP_FLT_MAX);
   hits[i].hit = uvec4(h.instance == WP_INVALID ? WP_INVALID : floatBitsToUint(h.t), h.instance, h.primitive, 0u);
 }

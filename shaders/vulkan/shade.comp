@@ -2,8 +2,21 @@
 // next queues through atomic counters, which compacts them.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "bindings.glsl"
 #include "common/integrator.h"
+
+// Slot for this invocation in the queue counted by counters[counter], if `wants`. One
+// atomic per subgroup instead of one per invocation: atomics serialise lanes, on GPUs and
+// even more on lavapipe, where each is a scalar loop over the SIMD lanes.
+uint appendSlot(uint counter, bool wants) {
+  uvec4 ballot = subgroupBallot(wants);
+  uint base = 0u;
+  if (subgroupElect()) {
+    base = atomicAdd(counters[counter], subgroupBallotBitCount(ballot));
+  }
+  return subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot);
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -12,19 +25,23 @@ void main() {
     return;
   }
   uint maxPaths = params.counts.w;
-  PathRay ray = rays[queue * maxPaths + i];
-  uvec4 h = hits[i].hit;
+  PathRay ray = loadRay(queue * maxPaths + i);
+  uvec4 h = WP_UINTS(hitTexels, i, 1u, 0u);
   ShadeResult r = h.x == WP_INVALID ? shadeMiss(params, ray)
                                     : shadeHit(params, ray, uintBitsToFloat(h.x), h.y, h.z);
   uint slot = floatBitsToUint(ray.origin.w);
-  pathRadiance[slot].xyz += r.radiance;
-  if ((r.flags & WP_SHADE_EXTEND) != 0u) {
-    uint next = 1u - queue;
-    uint j = atomicAdd(counters[WP_COUNTER_RAYS + next], 1u);
+  if (r.radiance != vec3(0.0)) {
+    pathRadiance[slot].xyz += r.radiance;
+  }
+  bool extends = (r.flags & WP_SHADE_EXTEND) != 0u;
+  uint next = 1u - queue;
+  uint j = appendSlot(WP_COUNTER_RAYS + next, extends);
+  if (extends) {
     rays[next * maxPaths + j] = r.next;
   }
-  if ((r.flags & WP_SHADE_SHADOW) != 0u) {
-    uint j = atomicAdd(counters[WP_COUNTER_SHADOW_RAYS + queue], 1u);
-    shadowRays[j] = r.shadow;
+  bool shadows = (r.flags & WP_SHADE_SHADOW) != 0u;
+  uint k = appendSlot(WP_COUNTER_SHADOW_RAYS + queue, shadows);
+  if (shadows) {
+    shadowRays[k] = r.shadow;
   }
 }

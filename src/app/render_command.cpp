@@ -14,6 +14,7 @@
 #include "app/progress_bar.h"
 #include "backend/vulkan/vulkan_backend.h"
 #include "bvh/gpu_scene.h"
+#include "bvh/instance_baking.h"
 #include "core/error.h"
 #include "image/image_io.h"
 #include "render/wavefront.h"
@@ -98,7 +99,7 @@ int runRender(RenderOptions o) {
 
   Scene scene = loadScene(o.scene);
   resolveImageSize(o, scene);
-  GpuScene gpuScene = packScene(scene);
+  GpuScene gpuScene = packScene(bakeSingleUseMeshes(scene));
 
   VulkanBackend backend(o.device, validate);
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);

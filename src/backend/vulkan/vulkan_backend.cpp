@@ -37,9 +37,29 @@ SpirvCode spirvFor(Kernel kernel) {
   return {nullptr, 0};
 }
 
+VkDescriptorType descriptorType(uint32_t binding) {
+  switch (binding) {
+    case WP_BINDING_PARAMS: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case WP_BINDING_NODES:
+    case WP_BINDING_TRIANGLES:
+    case WP_BINDING_INSTANCES:
+    case WP_BINDING_PLANES:
+    case WP_BINDING_MATERIALS:
+    case WP_BINDING_LIGHTS:
+    case WP_BINDING_RAYS_READ:
+    case WP_BINDING_HITS_READ:
+    case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    default: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  }
+}
+
+// Storage for the queues, also read as texels by the next stage.
+constexpr VkBufferUsageFlags kQueueUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+
 template <typename T>
 void uploadVector(VulkanContext& context, VulkanBuffer& buffer, const std::vector<T>& data) {
-  buffer = VulkanBuffer(context, data.size() * sizeof(T), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  buffer = VulkanBuffer(context, data.size() * sizeof(T), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
   buffer.upload(data.data(), data.size() * sizeof(T));
 }
 
@@ -50,11 +70,12 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
   createPipelines();
   VkDevice device = context_->device;
 
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, WP_BINDING_COUNT - 1}};
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, WP_BINDING_COUNT},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, WP_BINDING_COUNT},
+                                  {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, WP_BINDING_COUNT}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 2;
+  poolInfo.poolSizeCount = 3;
   poolInfo.pPoolSizes = sizes;
   VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool_));
   VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -85,6 +106,9 @@ VulkanBackend::~VulkanBackend() {
   if (queryPool_ != VK_NULL_HANDLE) {
     vkDestroyQueryPool(device, queryPool_, nullptr);
   }
+  for (VkBufferView view : texelViews_) {
+    vkDestroyBufferView(device, view, nullptr);
+  }
   vkDestroyFence(device, fence_, nullptr);
   vkDestroyDescriptorPool(device, descriptorPool_, nullptr);
   for (VkPipeline pipeline : pipelines_) {
@@ -113,8 +137,7 @@ void VulkanBackend::createPipelines() {
   std::vector<VkDescriptorSetLayoutBinding> bindings(WP_BINDING_COUNT);
   for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
     bindings[i].binding = i;
-    bindings[i].descriptorType =
-        i == WP_BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorType = descriptorType(i);
     bindings[i].descriptorCount = 1;
     bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
@@ -174,17 +197,15 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
                 std::to_string(uint64_t(maxGroups) * WP_WORKGROUP_SIZE) + "); lower it");
   }
   vkDeviceWaitIdle(context_->device);
-  VkDevice device = context_->device;
-  (void)device;
   params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   std::memcpy(params_.mapped(), &params, sizeof(params));
 
   bool resized = rays_.handle() == VK_NULL_HANDLE || hits_.size() < maxPaths * sizeof(gpu::HitRecord);
   if (resized) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    rays_ = VulkanBuffer(*context_, 2ull * maxPaths * sizeof(gpu::PathRay), storage, false);
-    hits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::HitRecord), storage, false);
-    shadowRays_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::ShadowRay), storage, false);
+    rays_ = VulkanBuffer(*context_, 2ull * maxPaths * sizeof(gpu::PathRay), kQueueUsage, false);
+    hits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::HitRecord), kQueueUsage, false);
+    shadowRays_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::ShadowRay), kQueueUsage, false);
     pathRadiance_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(glm::vec4), storage, false);
     counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
@@ -200,22 +221,50 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
 
 void VulkanBackend::writeDescriptors() {
   std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers = {
-      &params_,     &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3],
-      &sceneBuffers_[4], &sceneBuffers_[5], &rays_,     &hits_,            &shadowRays_,
-      &pathRadiance_, &counters_,       &accumulation_};
+      &params_,      &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3], &sceneBuffers_[4],
+      &sceneBuffers_[5], &rays_,        &hits_,            &shadowRays_,      &pathRadiance_,    &counters_,
+      &accumulation_, &rays_,           &hits_,            &shadowRays_};
+  for (VkBufferView view : texelViews_) {
+    vkDestroyBufferView(context_->device, view, nullptr);
+  }
+  texelViews_.clear();
   std::array<VkDescriptorBufferInfo, WP_BINDING_COUNT> infos;
+  std::array<VkBufferView, WP_BINDING_COUNT> views{};
   std::array<VkWriteDescriptorSet, WP_BINDING_COUNT> writes;
   for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
-    infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+    VkDescriptorType type = descriptorType(i);
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = descriptorSet_;
     writes[i].dstBinding = i;
     writes[i].descriptorCount = 1;
-    writes[i].descriptorType =
-        i == WP_BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &infos[i];
+    writes[i].descriptorType = type;
+    if (type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+      views[i] = texelView(*buffers[i]);
+      writes[i].pTexelBufferView = &views[i];
+    } else {
+      infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
+      writes[i].pBufferInfo = &infos[i];
+    }
   }
   vkUpdateDescriptorSets(context_->device, WP_BINDING_COUNT, writes.data(), 0, nullptr);
+}
+
+VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer) {
+  uint64_t texels = buffer.size() / 16;
+  uint64_t limit = context_->properties.limits.maxTexelBufferElements;
+  if (texels > limit) {
+    throw Error("a scene or queue buffer of " + std::to_string(texels) + " texels exceeds this device's limit of " +
+                std::to_string(limit) + "; use a smaller scene or --max-paths");
+  }
+  VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+  info.buffer = buffer.handle();
+  info.format = VK_FORMAT_R32G32B32A32_UINT;
+  info.offset = 0;
+  info.range = texels * 16;
+  VkBufferView view;
+  VK_CHECK(vkCreateBufferView(context_->device, &info, nullptr, &view));
+  texelViews_.push_back(view);
+  return view;
 }
 
 void VulkanBackend::barrier(VkPipelineStageFlags dstStages, VkAccessFlags dstAccess) {

@@ -29,6 +29,8 @@ public:
 private:
   void createPipelines();
   void writeDescriptors();
+  // A RGBA32UI view of the whole buffer (kept until the descriptors are rewritten).
+  VkBufferView texelView(const VulkanBuffer& buffer);
   void barrier(VkPipelineStageFlags dstStages, VkAccessFlags dstAccess);
   void timestamp(int kernel);
 
@@ -41,6 +43,7 @@ private:
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
+  std::vector<VkBufferView> texelViews_;
 
   // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
   std::array<VulkanBuffer, 6> sceneBuffers_;

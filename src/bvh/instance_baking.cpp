@@ -1,0 +1,51 @@
+// Baking of single-use meshes into one world-space mesh.
+#include "bvh/instance_baking.h"
+
+#include <utility>
+
+namespace wp {
+
+Scene bakeSingleUseMeshes(const Scene& scene) {
+  std::vector<uint32_t> uses(scene.meshes.size(), 0);
+  for (const MeshInstance& inst : scene.instances) {
+    ++uses[inst.mesh];
+  }
+  Scene out = scene;
+  out.meshes.clear();
+  out.instances.clear();
+  Mesh baked;
+  baked.name = "single-use meshes in world space";
+  std::vector<uint32_t> remap(scene.meshes.size(), UINT32_MAX);
+  for (const MeshInstance& inst : scene.instances) {
+    const Mesh& mesh = scene.meshes[inst.mesh];
+    float det = glm::determinant(glm::mat3(inst.objectToWorld));
+    if (uses[inst.mesh] != 1 || det == 0.0f) {
+      // Shared meshes stay instanced; singular transforms are left for the packer to report.
+      if (remap[inst.mesh] == UINT32_MAX) {
+        remap[inst.mesh] = uint32_t(out.meshes.size());
+        out.meshes.push_back(mesh);
+      }
+      out.instances.push_back({remap[inst.mesh], inst.objectToWorld});
+      continue;
+    }
+    uint32_t base = uint32_t(baked.positions.size());
+    for (const glm::vec3& p : mesh.positions) {
+      baked.positions.push_back(glm::vec3(inst.objectToWorld * glm::vec4(p, 1.0f)));
+    }
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1], c = mesh.indices[3 * t + 2];
+      if (det < 0.0f) {
+        std::swap(b, c);
+      }
+      baked.indices.insert(baked.indices.end(), {base + a, base + b, base + c});
+    }
+    baked.materials.insert(baked.materials.end(), mesh.materials.begin(), mesh.materials.end());
+  }
+  if (!baked.indices.empty()) {
+    out.instances.push_back({uint32_t(out.meshes.size()), glm::mat4(1.0f)});
+    out.meshes.push_back(std::move(baked));
+  }
+  return out;
+}
+
+}  // namespace wp

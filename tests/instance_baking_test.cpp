@@ -1,0 +1,100 @@
+// Baking single-use meshes into world space changes the BVH layout, never what a ray hits.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "bvh/gpu_scene.h"
+#include "bvh/instance_baking.h"
+#include "shaders/common/traverse.h"
+
+namespace wp {
+namespace {
+
+Mesh randomMesh(std::mt19937& rng, int triangles, uint32_t material) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Mesh mesh;
+  for (int t = 0; t < triangles; ++t) {
+    glm::vec3 c(u(rng), u(rng), u(rng));
+    for (int k = 0; k < 3; ++k) {
+      mesh.positions.push_back(c + 0.3f * glm::vec3(u(rng), u(rng), u(rng)));
+      mesh.indices.push_back(uint32_t(mesh.positions.size() - 1));
+    }
+    mesh.materials.push_back(material);
+  }
+  return mesh;
+}
+
+// A mesh placed once (rotated), a mesh placed twice, a mirrored mesh placed once.
+Scene testScene() {
+  std::mt19937 rng(5);
+  Scene scene;
+  scene.materials.resize(3);
+  scene.meshes = {randomMesh(rng, 50, 0), randomMesh(rng, 40, 1), randomMesh(rng, 30, 2)};
+  glm::mat4 rotated = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(2, 0, 0)), 0.7f, glm::vec3(0, 1, 1));
+  glm::mat4 mirrored = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 2, 0)), glm::vec3(-1, 1, 1));
+  scene.instances = {{0, rotated},
+                     {1, glm::translate(glm::mat4(1.0f), glm::vec3(-2, 0, 0))},
+                     {1, glm::translate(glm::mat4(1.0f), glm::vec3(0, -2, 0))},
+                     {2, mirrored}};
+  return scene;
+}
+
+TEST(InstanceBaking, MergesSingleUseMeshesAndKeepsSharedOnesInstanced) {
+  Scene baked = bakeSingleUseMeshes(testScene());
+  ASSERT_EQ(baked.meshes.size(), 2u);
+  ASSERT_EQ(baked.instances.size(), 3u);
+  EXPECT_EQ(baked.meshes[0].triangleCount(), 40u);  // the shared mesh
+  EXPECT_EQ(baked.meshes[1].triangleCount(), 80u);  // the two single-use meshes
+  EXPECT_EQ(baked.instances[2].objectToWorld, glm::mat4(1.0f));
+}
+
+TEST(InstanceBaking, MirroredMeshKeepsItsFrontFace) {
+  Scene scene = testScene();
+  Scene baked = bakeSingleUseMeshes(scene);
+  const Mesh& original = scene.meshes[2];
+  const Mesh& merged = baked.meshes[1];
+  glm::mat4 m = scene.instances[3].objectToWorld;
+  glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+  size_t offset = 50;  // mesh 0's triangles come first
+  for (size_t t = 0; t < original.triangleCount(); ++t) {
+    auto corner = [](const Mesh& mesh, size_t tri, int k) { return mesh.positions[mesh.indices[3 * tri + k]]; };
+    glm::vec3 n = glm::cross(corner(original, t, 1) - corner(original, t, 0), corner(original, t, 2) - corner(original, t, 0));
+    glm::vec3 expected = glm::normalize(normalMatrix * n);
+    size_t w = offset + t;
+    glm::vec3 world = glm::normalize(
+        glm::cross(corner(merged, w, 1) - corner(merged, w, 0), corner(merged, w, 2) - corner(merged, w, 0)));
+    EXPECT_GT(glm::dot(world, expected), 0.999f) << "triangle " << t;
+  }
+}
+
+TEST(InstanceBaking, RaysHitTheSameSurfacesBeforeAndAfter) {
+  Scene scene = testScene();
+  GpuScene instanced = packScene(scene);
+  GpuScene baked = packScene(bakeSingleUseMeshes(scene));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    glm::vec3 origin(4.0f * u(rng), 4.0f * u(rng), 4.0f * u(rng));
+    glm::vec3 direction = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
+    auto trace = [&](const GpuScene& g) {
+      return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot,
+                               0u, origin, direction, WP_FLT_MAX);
+    };
+    gpu::Hit a = trace(instanced);
+    gpu::Hit b = trace(baked);
+    ASSERT_EQ(a.instance == WP_INVALID, b.instance == WP_INVALID) << "ray " << i;
+    if (a.instance == WP_INVALID) {
+      continue;
+    }
+    ++hits;
+    EXPECT_NEAR(a.t, b.t, 1e-4f * a.t) << "ray " << i;
+    EXPECT_EQ(instanced.triangles[a.primitive].info.x, baked.triangles[b.primitive].info.x) << "material, ray " << i;
+  }
+  EXPECT_GT(hits, 500);  // enough hits for the comparison to mean something
+}
+
+}  // namespace
+}  // namespace wp
