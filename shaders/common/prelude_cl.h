@@ -8,6 +8,8 @@ typedef float4 vec4;
 typedef uint2 uvec2;
 typedef uint4 uvec4;
 
+// Whether `x` holds in every active lane of the subgroup; only steers performance.
+#define WP_SUBGROUP_ALL(x) (x)
 #define WP_BEGIN
 #define WP_END
 #define WP_FN

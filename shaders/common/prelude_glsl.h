@@ -2,6 +2,12 @@
 #ifndef WP_PRELUDE_GLSL_H
 #define WP_PRELUDE_GLSL_H
 
+// Whether `x` holds in every active lane of the subgroup; only steers performance.
+#ifdef GL_KHR_shader_subgroup_vote
+#define WP_SUBGROUP_ALL(x) subgroupAll(x)
+#else
+#define WP_SUBGROUP_ALL(x) (x)
+#endif
 #define WP_BEGIN
 #define WP_END
 #define WP_FN

@@ -22,6 +22,12 @@
 // node per level it descends, so one stack of this size serves both levels.
 #define WP_BVH_MAX_DEPTH 32u
 #define WP_TRAVERSAL_STACK_SIZE 64u
+// Bottom-level leaves hold at most this many triangles (the packer builds them so), which
+// lets the traversal test a leaf with a loop of fixed length.
+#define WP_MAX_LEAF_TRIANGLES 4u
+// Stack entries pack a node or leaf index with a leaf's primitive count above it.
+#define WP_ENTRY_COUNT_SHIFT 29u
+#define WP_ENTRY_INDEX_MASK 0x1fffffffu
 
 WP_BEGIN
 
@@ -71,10 +77,21 @@ WP_FN vec3 instanceRayDirection(GpuInstance inst, vec3 d) {
   return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
 }
 
-// Nearest hit at 0 < t < tMax, or with anyHit the first one found. Ordered traversal: the
-// nearer child is visited first and the farther pushed; leaf children are intersected as
-// soon as their parent is. The bottom level runs nested inside a top-level leaf and stacks
-// its nodes above the top level's in the same stack.
+// A traversal stack entry: a node (count 0) or a leaf of `count` primitives at `index`.
+WP_FN uint packEntry(uint index, uint count) { return index | (count << WP_ENTRY_COUNT_SHIFT); }
+WP_FN uint entryIndex(uint entry) { return entry & WP_ENTRY_INDEX_MASK; }
+WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
+
+// Nearest hit at 0 < t < tMax, or with anyHit the first one found.
+//
+// Each level is one flat loop over stack entries. An iteration either tests a node's two
+// children (the nearer becomes the next entry, the farther is pushed) or intersects one leaf
+// with a fixed-length loop over WP_MAX_LEAF_TRIANGLES triangles that the compiler unrolls.
+// Flat loops matter on SIMD implementations that run divergent branches under masks
+// (lavapipe, and GPUs): nested loops per child and per leaf made every lane pay for the
+// deepest nesting any lane reached, and a node visit cost as much as ten triangle tests.
+// The bottom level runs inside a top-level leaf and stacks its entries above the top
+// level's in the same stack.
 WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
                      float tMax, bool anyHit) {
   Hit hit;
@@ -97,96 +114,118 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
   vec3 invDir = rayInverseDirection(direction);
   uint stack[WP_TRAVERSAL_STACK_SIZE];
   uint sp = 0u;
-  uint node = tlasRoot;
+  uint entry = packEntry(tlasRoot, 0u);
   for (;;) {
-    ChildHits c = intersectChildren(WP_NODE(node), origin, invDir, hit.t);
-    uint next = WP_INVALID;
-    for (uint k = 0u; k < c.count; ++k) {
-      uint index = k == 0u ? c.children.x : c.children.y;
-      uint count = k == 0u ? c.children.z : c.children.w;
-      if (count == 0u) {
-        if (next == WP_INVALID) {
-          next = index;
-        } else {
-          stack[sp] = index;
-          ++sp;
-        }
+    if (entryCount(entry) == 0u) {
+      ChildHits c = intersectChildren(WP_NODE(entryIndex(entry)), origin, invDir, hit.t);
+      if (c.count == 2u) {
+        stack[sp] = packEntry(c.children.y, c.children.w);
+        ++sp;
+      }
+      if (c.count > 0u) {
+        entry = packEntry(c.children.x, c.children.z);
         continue;
       }
-      if (k == 1u && c.secondEntry > hit.t) {
-        continue;
-      }
-      for (uint i = index; i < index + count; ++i) {
-        GpuInstance inst = WP_INSTANCE(i);
-        vec3 o = instanceRayOrigin(inst, origin);
-        vec3 d = instanceRayDirection(inst, direction);
-        if (inst.info.x == WP_INSTANCE_SPHERE) {
-          float t = intersectUnitSphere(o, d, hit.t);
-          if (t < hit.t) {
-            hit.t = t;
-            hit.instance = i;
-            hit.primitive = WP_INVALID;
-            if (anyHit) {
-              return hit;
-            }
-          }
-          continue;
+    } else {
+      // A top-level leaf holds one instance (GpuScene packs one per leaf).
+      uint i = entryIndex(entry);
+      GpuInstance inst = WP_INSTANCE(i);
+      vec3 o = instanceRayOrigin(inst, origin);
+      vec3 d = instanceRayDirection(inst, direction);
+      if (inst.info.x == WP_INSTANCE_SPHERE) {
+        float t = intersectUnitSphere(o, d, hit.t);
+        if (t < hit.t) {
+          hit.t = t;
+          hit.instance = i;
+          hit.primitive = WP_INVALID;
         }
+      } else {
         vec3 objectInvDir = rayInverseDirection(d);
-        uint stackBase = sp;
-        uint blasNode = inst.info.y;
+        uint base = sp;
+        uint node = inst.info.y;  // next interior node to visit, WP_INVALID: none
+        uint leaf = WP_INVALID;   // leaf entry waiting to be intersected
         for (;;) {
-          ChildHits b = intersectChildren(WP_NODE(blasNode), o, objectInvDir, hit.t);
-          uint blasNext = WP_INVALID;
-          for (uint m = 0u; m < b.count; ++m) {
-            uint first = m == 0u ? b.children.x : b.children.y;
-            uint triangleCount = m == 0u ? b.children.z : b.children.w;
-            if (triangleCount == 0u) {
-              if (blasNext == WP_INVALID) {
-                blasNext = first;
-              } else {
-                stack[sp] = first;
+          // Walk interior nodes until this lane holds a leaf, postponing it until every lane
+          // of the subgroup holds one, so that node visits and leaf tests run in separate
+          // SIMD iterations (Aila & Laine 2009, "while-while" with postponed leaves).
+          while (node != WP_INVALID) {
+            ChildHits b = intersectChildren(WP_NODE(node), o, objectInvDir, hit.t);
+            uint nearEntry = packEntry(b.children.x, b.children.z);
+            if (b.count == 2u) {
+              stack[sp] = packEntry(b.children.y, b.children.w);
+              ++sp;
+            }
+            node = WP_INVALID;
+            if (b.count > 0u && b.children.z == 0u) {
+              node = b.children.x;
+            } else {
+              if (b.count > 0u && leaf == WP_INVALID) {
+                leaf = nearEntry;
+              } else if (b.count > 0u) {
+                // This lane already holds a leaf (it waits for the others): keep the new one.
+                stack[sp] = nearEntry;
                 ++sp;
               }
-              continue;
+              if (sp > base) {
+                --sp;
+                uint popped = stack[sp];
+                if (entryCount(popped) == 0u) {
+                  node = popped;
+                } else if (leaf == WP_INVALID) {
+                  leaf = popped;
+                } else {
+                  // Keep it for after the leaf in hand.
+                  ++sp;
+                }
+              }
             }
-            if (m == 1u && b.secondEntry > hit.t) {
-              continue;
+            if (WP_SUBGROUP_ALL(leaf != WP_INVALID || node == WP_INVALID)) {
+              break;
             }
-            for (uint j = first; j < first + triangleCount; ++j) {
+          }
+          if (leaf != WP_INVALID) {
+            uint first = entryIndex(leaf);
+            uint count = entryCount(leaf);
+            for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
+              uint j = first + (k < count ? k : 0u);
               GpuTriangle tri = WP_TRIANGLE(j);
               float t = intersectTriangle(o, d, make_vec3(tri.v0.x, tri.v0.y, tri.v0.z),
                                           make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z),
                                           make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z), hit.t);
-              if (t < hit.t) {
+              if (k < count && t < hit.t) {
                 hit.t = t;
                 hit.instance = i;
                 hit.primitive = j;
-                if (anyHit) {
-                  return hit;
-                }
               }
             }
+            leaf = WP_INVALID;
+            if (anyHit && hit.instance != WP_INVALID) {
+              return hit;
+            }
           }
-          if (blasNext == WP_INVALID) {
-            if (sp == stackBase) {
+          if (node == WP_INVALID) {
+            if (sp == base) {
               break;
             }
             --sp;
-            blasNext = stack[sp];
+            uint popped = stack[sp];
+            if (entryCount(popped) == 0u) {
+              node = popped;
+            } else {
+              leaf = popped;
+            }
           }
-          blasNode = blasNext;
         }
       }
-    }
-    if (next == WP_INVALID) {
-      if (sp == 0u) {
-        break;
+      if (anyHit && hit.instance != WP_INVALID) {
+        return hit;
       }
-      --sp;
-      next = stack[sp];
     }
-    node = next;
+    if (sp == 0u) {
+      break;
+    }
+    --sp;
+    entry = stack[sp];
   }
   return hit;
 }

@@ -17,7 +17,7 @@ namespace {
 static_assert(2 * WP_BVH_MAX_DEPTH <= WP_TRAVERSAL_STACK_SIZE,
               "the traversal stack must hold a top-level and a bottom-level path");
 
-constexpr uint32_t kMeshLeafSize = 4;
+constexpr uint32_t kMeshLeafSize = WP_MAX_LEAF_TRIANGLES;
 // One instance per top-level leaf: an instance test (transform plus a whole bottom-level
 // traversal) costs far more than a node visit.
 constexpr uint32_t kInstanceLeafSize = 1;
