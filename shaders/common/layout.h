@@ -45,7 +45,7 @@ WP_BEGIN
 
 // Element access to the read-only scene buffers. C++ and OpenCL index arrays passed as
 // arguments; GLSL (shaders/vulkan/bindings.glsl) fetches texels.
-#if defined(__cplusplus) || defined(__OPENCL_VERSION__)
+#ifdef WP_BUFFERS_AS_ARGUMENTS
 #define WP_NODE(i) nodes[i]
 #define WP_TRIANGLE(i) triangles[i]
 #define WP_INSTANCE(i) instances[i]

@@ -8,7 +8,7 @@
 
 WP_BEGIN
 
-#if defined(__cplusplus) || defined(__OPENCL_VERSION__)
+#ifdef WP_BUFFERS_AS_ARGUMENTS
 #define WP_LIGHT_BUFFER WP_GLOBAL_PTR(GpuLight) lights,
 #define WP_LIGHT_BUFFER_ARG lights,
 #else

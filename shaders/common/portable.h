@@ -11,10 +11,15 @@
 // - structs are declared with WP_STRUCT(Name) ... WP_STRUCT_END(Name);
 // - functions are declared WP_FN; code sits between WP_BEGIN and WP_END;
 // - no file-scope const variables (OpenCL wants __constant): use #define.
+// WP_BUFFERS_AS_ARGUMENTS: C++ and OpenCL pass buffers to functions as pointers; GLSL reads
+// them as globals that the including stage declares. (OpenCL compilers define
+// __OPENCL_VERSION__; plain clang -x cl defines only __OPENCL_C_VERSION__.)
 #if defined(__cplusplus)
 #include "prelude_cpp.h"
-#elif defined(__OPENCL_VERSION__)
+#define WP_BUFFERS_AS_ARGUMENTS 1
+#elif defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 #include "prelude_cl.h"
+#define WP_BUFFERS_AS_ARGUMENTS 1
 #else
 #include "prelude_glsl.h"
 #endif

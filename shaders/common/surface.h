@@ -7,7 +7,7 @@
 
 WP_BEGIN
 
-#if defined(__cplusplus) || defined(__OPENCL_VERSION__)
+#ifdef WP_BUFFERS_AS_ARGUMENTS
 #define WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuTriangle) triangles, WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes,
 #define WP_SURFACE_BUFFER_ARGS triangles, instances, planes,
 #else

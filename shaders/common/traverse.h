@@ -8,7 +8,7 @@
 
 // Scene elements are read through WP_NODE(i) and friends (layout.h): C++ and OpenCL index the
 // arrays passed as the leading arguments, GLSL fetches from texel buffers it declares.
-#if defined(__cplusplus) || defined(__OPENCL_VERSION__)
+#ifdef WP_BUFFERS_AS_ARGUMENTS
 #define WP_SCENE_BUFFERS                                                               \
   WP_GLOBAL_PTR(BvhNode) nodes, WP_GLOBAL_PTR(GpuTriangle) triangles,                \
       WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes,
@@ -19,9 +19,10 @@
 #endif
 
 // Each level is built no deeper than WP_BVH_MAX_DEPTH, and a traversal pushes at most one
-// node per level it descends, so one stack of this size serves both levels.
+// entry per level it descends (plus two while a bottom-level lane holds a postponed leaf),
+// so one stack of this size serves both levels.
 #define WP_BVH_MAX_DEPTH 32u
-#define WP_TRAVERSAL_STACK_SIZE 64u
+#define WP_TRAVERSAL_STACK_SIZE 68u
 // Bottom-level leaves hold at most this many triangles (the packer builds them so), which
 // lets the traversal test a leaf with a loop of fixed length.
 #define WP_MAX_LEAF_TRIANGLES 4u
@@ -41,8 +42,7 @@ WP_STRUCT_END(Hit)
 WP_STRUCT(ChildHits)
   uvec4 children;  // x, y: index of the first and second child reached; z, w: their leaf
                    // counts (0: interior node)
-  float secondEntry;  // entry distance of the second child, re-checked after the first
-  uint count;         // children reached: 0, 1 or 2
+  uint count;      // children reached: 0, 1 or 2
 WP_STRUCT_END(ChildHits)
 
 WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
@@ -61,7 +61,6 @@ WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float 
   c.children = rightFirst
       ? make_uvec4(rightIndex, leftIndex, asUint(node.rightMax.w), asUint(node.leftMax.w))
       : make_uvec4(leftIndex, rightIndex, asUint(node.leftMax.w), asUint(node.rightMax.w));
-  c.secondEntry = rightFirst ? l.x : r.x;
   c.count = (hitLeft ? 1u : 0u) + (hitRight ? 1u : 0u);
   return c;
 }

@@ -77,7 +77,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "bsdf (BSDF sampling only)")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
   cmd->add_option("--rr-start", s.russianRouletteStart, "First bounce at which Russian roulette may end a path");
-  cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each)")
+  cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds)")
       ->check(CLI::Range(64u, 4194240u));
   cmd->add_option("--backend", o.backend, "Compute backend")->check(CLI::IsMember({"vulkan"}));
   cmd->add_option("--device", o.device, "Device index from 'wavepath devices' (default: the most capable)")

@@ -14,7 +14,9 @@
 namespace wp {
 namespace {
 
-static_assert(2 * WP_BVH_MAX_DEPTH <= WP_TRAVERSAL_STACK_SIZE,
+// A path down each level, plus the two entries a bottom-level visit may push while its lane
+// holds a postponed leaf.
+static_assert(2 * WP_BVH_MAX_DEPTH + 2 <= WP_TRAVERSAL_STACK_SIZE,
               "the traversal stack must hold a top-level and a bottom-level path");
 
 constexpr uint32_t kMeshLeafSize = WP_MAX_LEAF_TRIANGLES;

@@ -48,6 +48,8 @@ public:
   virtual ~Backend() = default;
 
   virtual std::string deviceName() const = 0;
+  // The most paths the device can keep in flight in one pass (dispatch and buffer limits).
+  virtual uint32_t maxPathsInFlight() const = 0;
   // Uploads the scene. Call before configure; may be called again to replace the scene.
   virtual void loadScene(const GpuScene& scene) = 0;
   // Sets the render parameters and sizes path state for params.counts.w paths and the

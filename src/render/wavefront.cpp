@@ -39,7 +39,9 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
 
 WavefrontRenderer::WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene,
                                      const RenderSettings& settings)
-    : backend_(backend), settings_(settings), params_(makeRenderParams(scene, gpuScene, settings)) {
+    : backend_(backend), settings_(settings) {
+  settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
+  params_ = makeRenderParams(scene, gpuScene, settings_);
   backend_.loadScene(gpuScene);
   backend_.configure(params_);
 }

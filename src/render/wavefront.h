@@ -29,7 +29,8 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
 
 class WavefrontRenderer {
 public:
-  // Loads the scene into `backend` and configures it for `settings`.
+  // Loads the scene into `backend` and configures it for `settings`, with the paths in
+  // flight lowered to what the device can hold.
   WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
   // Traces samplesPerPixel samples of every pixel, calling progress(fraction) after each

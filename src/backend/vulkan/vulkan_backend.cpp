@@ -2,6 +2,7 @@
 // and per-kernel GPU timestamps.
 #include "backend/vulkan/vulkan_backend.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "backend/vulkan/vk_check.h"
@@ -132,6 +133,15 @@ std::string VulkanBackend::deviceName() const {
   return std::string(context_->properties.deviceName) + " (Vulkan)";
 }
 
+uint32_t VulkanBackend::maxPathsInFlight() const {
+  const VkPhysicalDeviceLimits& limits = context_->properties.limits;
+  uint64_t byDispatch = uint64_t(limits.maxComputeWorkGroupCount[0]) * WP_WORKGROUP_SIZE;
+  // The two ray queues share one buffer, bound whole as storage and as RGBA32UI texels.
+  uint64_t byStorage = limits.maxStorageBufferRange / (2 * sizeof(gpu::PathRay));
+  uint64_t byTexels = uint64_t(limits.maxTexelBufferElements) / (2 * sizeof(gpu::PathRay) / 16);
+  return uint32_t(std::min({byDispatch, byStorage, byTexels, uint64_t(UINT32_MAX)}));
+}
+
 void VulkanBackend::createPipelines() {
   VkDevice device = context_->device;
   std::vector<VkDescriptorSetLayoutBinding> bindings(WP_BINDING_COUNT);
@@ -191,10 +201,9 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
     throw Error("internal: VulkanBackend::configure called before loadScene");
   }
   uint32_t maxPaths = params.counts.w;
-  uint32_t maxGroups = context_->properties.limits.maxComputeWorkGroupCount[0];
-  if ((maxPaths + WP_WORKGROUP_SIZE - 1) / WP_WORKGROUP_SIZE > maxGroups) {
-    throw Error("--max-paths " + std::to_string(maxPaths) + " exceeds what this device dispatches at once (" +
-                std::to_string(uint64_t(maxGroups) * WP_WORKGROUP_SIZE) + "); lower it");
+  if (maxPaths > maxPathsInFlight()) {
+    throw Error("internal: " + std::to_string(maxPaths) + " paths in flight exceed the device's " +
+                std::to_string(maxPathsInFlight()));
   }
   vkDeviceWaitIdle(context_->device);
   params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);

@@ -19,6 +19,7 @@ public:
   ~VulkanBackend() override;
 
   std::string deviceName() const override;
+  uint32_t maxPathsInFlight() const override;
   void loadScene(const GpuScene& scene) override;
   void configure(const gpu::RenderParams& params) override;
   void beginPass() override;

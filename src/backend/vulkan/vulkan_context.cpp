@@ -134,6 +134,27 @@ int computeQueueFamily(VkPhysicalDevice device) {
   return -1;
 }
 
+// The stages need Vulkan 1.1 with subgroup ballot and vote in compute shaders (queue
+// appends, traversal); returns what is missing, or an empty string.
+std::string missingRequirement(VkPhysicalDevice device) {
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props.pNext = &subgroup;
+  vkGetPhysicalDeviceProperties2(device, &props);
+  if (props.properties.apiVersion < VK_API_VERSION_1_1) {
+    return "Vulkan 1.1";
+  }
+  if (computeQueueFamily(device) < 0) {
+    return "a compute queue";
+  }
+  const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT;
+  if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
+      (subgroup.supportedOperations & needed) != needed) {
+    return "subgroup ballot and vote in compute shaders";
+  }
+  return "";
+}
+
 VulkanDeviceInfo describe(VkPhysicalDevice device) {
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -196,7 +217,7 @@ VulkanContext::VulkanContext(int deviceIndex, bool validation) {
       for (size_t i = 0; i < devices.size(); ++i) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(devices[i], &p);
-        int rank = computeQueueFamily(devices[i]) >= 0 && p.apiVersion >= VK_API_VERSION_1_1 ? typeRank(p.deviceType) : -1;
+        int rank = missingRequirement(devices[i]).empty() ? typeRank(p.deviceType) : -1;
         if (rank > bestRank) {
           bestRank = rank;
           best = static_cast<int>(i);
@@ -206,12 +227,12 @@ VulkanContext::VulkanContext(int deviceIndex, bool validation) {
     physicalDevice = devices[best];
     vkGetPhysicalDeviceProperties(physicalDevice, &properties);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice, &memoryProperties);
-    int family = computeQueueFamily(physicalDevice);
-    if (family < 0 || properties.apiVersion < VK_API_VERSION_1_1) {
-      throw Error(std::string("Vulkan device '") + properties.deviceName +
-                  "' lacks a compute queue or Vulkan 1.1; pick another with --device");
+    std::string missing = missingRequirement(physicalDevice);
+    if (!missing.empty()) {
+      throw Error(std::string("Vulkan device '") + properties.deviceName + "' lacks " + missing +
+                  "; pick another with --device (see 'wavepath devices') or update its driver");
     }
-    queueFamily = static_cast<uint32_t>(family);
+    queueFamily = static_cast<uint32_t>(computeQueueFamily(physicalDevice));
 
     uint32_t familyCount = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
