@@ -1,0 +1,182 @@
+// The HDR sky: an equirectangular (lat-long) radiance map around the scene, rotated about +y,
+// looked up by direction and importance-sampled by luminance for next event estimation.
+#ifndef WP_ENVIRONMENT_H
+#define WP_ENVIRONMENT_H
+
+#include "lights.h"
+
+WP_BEGIN
+
+// The map's frame (y up, as glTF): v = theta / pi, theta measured from +y, so the top row
+// (v = 0) is the zenith and the bottom row the nadir; u = 1/2 + phi / (2 pi) with phi =
+// atan2(x, -z), so the middle of the map (u = 1/2) is the -z direction a default glTF camera
+// looks along, u = 3/4 is +x (to that camera's right), u = 1/4 is -x and u = 0 or 1 is +z.
+// Seen from inside, the picture is not mirrored. A sky rotated by `rotation` radians turns
+// right-handed about +y (counterclockwise seen from above): what the map shows at direction
+// m appears at Ry(rotation) m, so +x moves towards -z.
+//
+// Radiance is looked up nearest-neighbour: each texel is constant over its patch of (u, v).
+// The sampling density is piecewise constant over the same patches, proportional to the
+// texel's luminance times sin(theta) at its row's centre (the solid angle a texel spans),
+// so radiance / pdf is nearly constant within a texel and exactly consistent with eval.
+//
+// The distribution is a 2D piecewise-constant one (Pharr, Jakob & Humphreys, PBRT 3rd ed.,
+// §13.6.7): a marginal CDF over rows, height + 1 floats from 0 to 1, and for each row a
+// conditional CDF over its columns, width + 1 floats from 0 to 1, rows one after another
+// (row r starts at r * (width + 1)). Both are built on the host (src/scene/environment_map.h)
+// and read through WP_ENV_MARGINAL(i), WP_ENV_CONDITIONAL(i) and WP_ENV_RADIANCE(i) (texel i =
+// row * width + column, top row first; rgb radiance, w unused): C++ and OpenCL index arrays
+// passed as arguments; a GLSL stage defines the three macros to fetch texels.
+// Functions take the radiance (WP_ENV_RADIANCE_BUFFER), the two CDFs (WP_ENV_CDF_BUFFERS) or
+// all three (WP_ENV_BUFFERS), in that order.
+#ifdef WP_BUFFERS_AS_ARGUMENTS
+#define WP_ENV_RADIANCE_BUFFER WP_GLOBAL_PTR(vec4) envRadiance,
+#define WP_ENV_CDF_BUFFERS WP_GLOBAL_PTR(float) envMarginal, WP_GLOBAL_PTR(float) envConditional,
+#define WP_ENV_CDF_BUFFER_ARGS envMarginal, envConditional,
+#define WP_ENV_RADIANCE(i) envRadiance[i]
+#define WP_ENV_MARGINAL(i) envMarginal[i]
+#define WP_ENV_CONDITIONAL(i) envConditional[i]
+#else
+#define WP_ENV_RADIANCE_BUFFER
+#define WP_ENV_CDF_BUFFERS
+#define WP_ENV_CDF_BUFFER_ARGS
+#endif
+#define WP_ENV_BUFFERS WP_ENV_RADIANCE_BUFFER WP_ENV_CDF_BUFFERS
+
+// The two-argument arctangent: OpenCL spells it atan2, GLSL and GLM atan(y, x).
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+#define wpAtan2(y, x) atan2((y), (x))
+#else
+#define wpAtan2(y, x) atan((y), (x))
+#endif
+
+// Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
+WP_STRUCT(GpuEnvironment)
+  vec4 transform;  // x: intensity (radiance multiplier); y: rotation about +y, radians; z, w: unused
+  uvec4 size;      // x: width, y: height (texels); z, w: unused
+WP_STRUCT_END(GpuEnvironment)
+
+WP_FN GpuEnvironment makeEnvironment(uint width, uint height, float intensity, float rotation) {
+  GpuEnvironment env;
+  env.transform = make_vec4(intensity, rotation, 0.0f, 0.0f);
+  env.size = make_uvec4(width, height, 0u, 0u);
+  return env;
+}
+
+// Map coordinates (u, v) in [0, 1]^2 of the world direction `direction` (unit).
+WP_FN vec2 environmentUv(GpuEnvironment env, vec3 direction) {
+  float u = 0.5f + (wpAtan2(direction.x, -direction.z) + env.transform.y) * (0.5f * WP_INV_PI);
+  u = u - floor(u);
+  // theta from atan2 rather than acos(y): near the poles y = cos(theta) has lost theta's
+  // digits, while the horizontal length still holds sin(theta) to full precision.
+  float v = wpAtan2(sqrt(direction.x * direction.x + direction.z * direction.z), direction.y) * WP_INV_PI;
+  return make_vec2(u, v);
+}
+
+// The unit world direction at map coordinates (u, v): the inverse of environmentUv.
+WP_FN vec3 environmentDirection(GpuEnvironment env, vec2 uv) {
+  float phi = 2.0f * WP_PI * (uv.x - 0.5f) - env.transform.y;
+  float theta = WP_PI * uv.y;
+  float sinTheta = sin(theta);
+  return make_vec3(sinTheta * sin(phi), cos(theta), -sinTheta * cos(phi));
+}
+
+// Index (row * width + column) of the texel holding (u, v).
+WP_FN uint environmentTexel(GpuEnvironment env, vec2 uv) {
+  uint column = min(toUint(uv.x * toFloat(env.size.x)), env.size.x - 1u);
+  uint row = min(toUint(uv.y * toFloat(env.size.y)), env.size.y - 1u);
+  return row * env.size.x + column;
+}
+
+// Sky radiance seen along `direction` (unit), intensity included: the nearest texel.
+WP_FN vec3 environmentRadiance(WP_ENV_RADIANCE_BUFFER GpuEnvironment env, vec3 direction) {
+  vec4 texel = WP_ENV_RADIANCE(environmentTexel(env, environmentUv(env, direction)));
+  return make_vec3(texel.x, texel.y, texel.z) * env.transform.x;
+}
+
+// Density over (u, v) of choosing texel `texel`: its row's marginal probability times its
+// column's conditional one, over the area of a texel in (u, v).
+WP_FN float environmentUvPdf(WP_ENV_CDF_BUFFERS GpuEnvironment env, uint texel) {
+  uint row = texel / env.size.x;
+  uint column = texel - row * env.size.x;
+  uint base = row * (env.size.x + 1u);
+  float rowProbability = WP_ENV_MARGINAL(row + 1u) - WP_ENV_MARGINAL(row);
+  float columnProbability = WP_ENV_CONDITIONAL(base + column + 1u) - WP_ENV_CONDITIONAL(base + column);
+  return rowProbability * columnProbability * toFloat(env.size.x) * toFloat(env.size.y);
+}
+
+// Solid-angle density of sampleEnvironment choosing `direction` (unit): the (u, v) density
+// divided by the Jacobian of the lat-long map, d(omega) = 2 pi^2 sin(theta) du dv. Zero at
+// the poles, where the map degenerates and no sample lands.
+WP_FN float environmentPdf(WP_ENV_CDF_BUFFERS GpuEnvironment env, vec3 direction) {
+  vec2 uv = environmentUv(env, direction);
+  float sinTheta = sin(WP_PI * uv.y);
+  if (sinTheta <= 0.0f) return 0.0f;
+  return environmentUvPdf(WP_ENV_CDF_BUFFER_ARGS env, environmentTexel(env, uv)) / (2.0f * WP_PI * WP_PI * sinTheta);
+}
+
+// The texel (row * width + column) sampled by u in [0, 1)^2: u.y finds the row whose
+// marginal interval [cdf[row], cdf[row + 1]) holds it, then u.x the column within that row's
+// conditional CDF, each by a binary search that keeps cdf[lo] <= u < cdf[hi]. Intervals of
+// zero probability are empty and never chosen.
+WP_FN uint findEnvironmentTexel(WP_ENV_CDF_BUFFERS uint width, uint height, vec2 u) {
+  uint lo = 0u;
+  uint hi = height;
+  while (hi - lo > 1u) {
+    uint mid = (lo + hi) / 2u;
+    if (WP_ENV_MARGINAL(mid) <= u.y) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  uint row = lo;
+  uint base = row * (width + 1u);
+  lo = 0u;
+  hi = width;
+  while (hi - lo > 1u) {
+    uint mid = (lo + hi) / 2u;
+    if (WP_ENV_CONDITIONAL(base + mid) <= u.x) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return row * width + lo;
+}
+
+// A direction towards the sky with density proportional to its texels' luminance times
+// sin(theta), for next event estimation: u.y picks the row, u.x the column, and what is left
+// of each places the point uniformly within the texel's (u, v) patch. The pdf is in solid
+// angle and excludes the choice between the sky and other lights; distance is WP_FLT_MAX
+// (the shadow ray runs to infinity); radiance includes the intensity.
+WP_FN LightSample sampleEnvironment(WP_ENV_BUFFERS GpuEnvironment env, vec2 u) {
+  uint width = env.size.x;
+  uint height = env.size.y;
+  uint texel = findEnvironmentTexel(WP_ENV_CDF_BUFFER_ARGS width, height, u);
+  uint row = texel / width;
+  uint column = texel - row * width;
+  uint base = row * (width + 1u);
+  float m0 = WP_ENV_MARGINAL(row);
+  float m1 = WP_ENV_MARGINAL(row + 1u);
+  float c0 = WP_ENV_CONDITIONAL(base + column);
+  float c1 = WP_ENV_CONDITIONAL(base + column + 1u);
+  // The remainders are below 1 in exact arithmetic; rounding could make them 1, the edge of
+  // the next texel.
+  float dv = min((u.y - m0) / (m1 - m0), 0.99999994f);
+  float du = min((u.x - c0) / (c1 - c0), 0.99999994f);
+  vec2 uv = make_vec2((toFloat(column) + du) / toFloat(width), (toFloat(row) + dv) / toFloat(height));
+  float sinTheta = sin(WP_PI * uv.y);
+  LightSample s;
+  s.direction = environmentDirection(env, uv);
+  s.distance = WP_FLT_MAX;
+  vec4 radiance = WP_ENV_RADIANCE(texel);
+  s.radiance = make_vec3(radiance.x, radiance.y, radiance.z) * env.transform.x;
+  float uvPdf = environmentUvPdf(WP_ENV_CDF_BUFFER_ARGS env, texel);
+  s.pdf = sinTheta > 0.0f ? uvPdf / (2.0f * WP_PI * WP_PI * sinTheta) : 0.0f;
+  return s;
+}
+
+WP_END
+
+#endif
