@@ -368,4 +368,21 @@ TEST_F(EnvironmentLoadTest, ErrorsAreOneLineNamingTheFile) {
   }
 }
 
+TEST(EnvironmentAsset, ShippedSkyLoads) {
+  const char* source = std::getenv("WAVEPATH_SOURCE_DIR");
+  ASSERT_NE(source, nullptr) << "WAVEPATH_SOURCE_DIR is not set; run the tests through ctest";
+  wp::EnvironmentMap map = wp::loadEnvironmentMap(fs::path(source) / "assets" / "sky.hdr");
+  EXPECT_EQ(map.width, 512u);
+  EXPECT_EQ(map.height, 256u);
+  // A clear day: the sun is some 1e5 times brighter than the sky around it and sends most
+  // of the light, while the zenith sky is a few thousand cd/m^2.
+  std::vector<double> lum;
+  for (const glm::vec4& t : map.radiance) lum.push_back(gpu::luminance(glm::vec3(t)));
+  double brightest = *std::max_element(lum.begin(), lum.end());
+  double zenith = lum[map.width / 2];
+  EXPECT_GT(brightest / zenith, 1e4);
+  EXPECT_GT(zenith, 1000.0);
+  EXPECT_LT(zenith, 20000.0);
+}
+
 }  // namespace
