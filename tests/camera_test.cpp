@@ -25,6 +25,9 @@ using wp::test::TestRandom;
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The sizes std140/std430 and OpenCL give the structs, so they can be uploaded as they are.
+static_assert(sizeof(gpu::ThinLens) == 80);
+
 // ---- Exposure ------------------------------------------------------------------------------
 
 TEST(Exposure, Ev100AtKnownSettings) {

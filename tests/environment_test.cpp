@@ -30,6 +30,10 @@ using wp::test::TestRandom;
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The sizes std140/std430 and OpenCL give the struct and the radiance texels.
+static_assert(sizeof(gpu::GpuEnvironment) == 32);
+static_assert(sizeof(wp::EnvironmentMap::radiance[0]) == 16);
+
 // The three chi-square tests below, each at the Šidák-corrected level so that a correct
 // sampler fails the suite with probability 1% (fixed seeds make it deterministic).
 const double kAlpha = wp::test::sidakAlpha(0.01, 3);

@@ -18,7 +18,8 @@ WP_BEGIN
 // Radiance is looked up nearest-neighbour: each texel is constant over its patch of (u, v).
 // The sampling density is piecewise constant over the same patches, proportional to the
 // texel's luminance times sin(theta) at its row's centre (the solid angle a texel spans),
-// so radiance / pdf is nearly constant within a texel and exactly consistent with eval.
+// so sampling and lookup see the same texels and radiance / pdf varies within a texel only
+// as sin(theta) does.
 //
 // The distribution is a 2D piecewise-constant one (Pharr, Jakob & Humphreys, PBRT 3rd ed.,
 // §13.6.7): a marginal CDF over rows, height + 1 floats from 0 to 1, and for each row a

@@ -8,7 +8,7 @@ WP_BEGIN
 
 // Radiance is read as photometric: the Rec. 709 luminance of an RGB radiance (luminance() in
 // sampling.h) is its luminance in cd/m^2, so a camera set by f-number, shutter and ISO sees a
-// scene as a real one would (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", §4.4).
+// scene as a real one would (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR").
 
 // Saturation-based sensitivity (ISO 12232): a sensor of ISO S saturates at the photometric
 // exposure H = 78 / S lux s, and the lens passes H = q t L / N^2 of a scene luminance L, where
