@@ -1,5 +1,6 @@
-// Buffer declarations shared by every Vulkan stage (one descriptor set, see layout.h), and
-// the texel-fetch loaders behind the WP_NODE(i)-style accessors of the portable headers.
+// Buffer declarations shared by every Vulkan stage (one descriptor set, see layout.h), the
+// texel-fetch loaders behind the WP_NODE(i)-style accessors of the portable headers, and
+// the queue counters as a QueueCounters struct for the stage functions of stages.h.
 #include "common/layout.h"
 
 layout(local_size_x = WP_WORKGROUP_SIZE) in;
@@ -104,3 +105,21 @@ ShadowRay loadShadowRay(uint i) {
 #define WP_LIGHT(i) loadLight(i)
 
 uint bounceParity() { return pc.pass.w & 1u; }
+
+QueueCounters loadCounters() {
+  QueueCounters c;
+  c.counts = uvec4(counters[0], counters[1], counters[2], counters[3]);
+  c.totals = uvec4(counters[4], counters[5], counters[6], counters[7]);
+  c.extendDispatch = uvec4(counters[8], counters[9], counters[10], counters[11]);
+  c.connectDispatch = uvec4(counters[12], counters[13], counters[14], counters[15]);
+  return c;
+}
+
+void storeCounters(QueueCounters c) {
+  for (uint i = 0u; i < 4u; ++i) {
+    counters[i] = c.counts[i];
+    counters[4u + i] = c.totals[i];
+    counters[8u + i] = c.extendDispatch[i];
+    counters[12u + i] = c.connectDispatch[i];
+  }
+}

@@ -3,7 +3,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #include "bindings.glsl"
-#include "common/traverse.h"
+#include "common/stages.h"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -11,7 +11,7 @@ void main() {
     return;
   }
   ShadowRay s = loadShadowRay(i);
-  if (!traceAny(params.counts.y, params.counts.x, s.origin.xyz, s.direction.xyz, s.direction.w)) {
-    pathRadiance[floatBitsToUint(s.origin.w)].xyz += s.contribution.xyz;
+  if (shadowRayUnoccluded(params, s)) {
+    pathRadiance[pathSlot(s.origin)].xyz += s.contribution.xyz;
   }
 }

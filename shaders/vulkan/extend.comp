@@ -3,7 +3,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #include "bindings.glsl"
-#include "common/traverse.h"
+#include "common/stages.h"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -11,7 +11,5 @@ void main() {
   if (i >= counters[WP_COUNTER_RAYS + queue]) {
     return;
   }
-  PathRay ray = loadRay(queue * params.counts.w + i);
-  Hit h = traceClosest(params.counts.y, params.counts.x, ray.origin.xyz, ray.direction.xyz, WP_FLT_MAX);
-  hits[i].hit = uvec4(h.instance == WP_INVALID ? WP_INVALID : floatBitsToUint(h.t), h.instance, h.primitive, 0u);
+  hits[i] = extendRay(params, loadRay(queue * params.counts.w + i));
 }

@@ -1,10 +1,11 @@
-// Stage 3: shade each hit (integrator.h) and append continuations and shadow rays to the
-// next queues through atomic counters, which compacts them.
+// Stage 3: shade each hit (shadePath in stages.h) and append continuations and shadow rays
+// to the next queues through atomic counters, which compacts them.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_vote : require
 #include "bindings.glsl"
-#include "common/integrator.h"
+#include "common/stages.h"
 
 // Slot for this invocation in the queue counted by counters[counter], if `wants`. One
 // atomic per subgroup instead of one per invocation: atomics serialise lanes, on GPUs and
@@ -26,10 +27,8 @@ void main() {
   }
   uint maxPaths = params.counts.w;
   PathRay ray = loadRay(queue * maxPaths + i);
-  uvec4 h = WP_UINTS(hitTexels, i, 1u, 0u);
-  ShadeResult r = h.x == WP_INVALID ? shadeMiss(params, ray)
-                                    : shadeHit(params, ray, uintBitsToFloat(h.x), h.y, h.z);
-  uint slot = floatBitsToUint(ray.origin.w);
+  ShadeResult r = shadePath(params, ray, WP_UINTS(hitTexels, i, 1u, 0u));
+  uint slot = pathSlot(ray.origin);
   if (r.radiance != vec3(0.0)) {
     pathRadiance[slot].xyz += r.radiance;
   }
