@@ -19,7 +19,8 @@ struct RenderOptions {
   bool heightGiven = false;
   std::string backend = "vulkan";
   int device = -1;
-  bool validate = false;  // Khronos validation layer; also WAVEPATH_VALIDATION=1
+  std::string clDispatch = "readback";  // OpenCL only: how queue-sized launches are sized (ClDispatch)
+  bool validate = false;  // validation (Vulkan: Khronos layer); also WAVEPATH_VALIDATION=1
   bool timings = false;   // per-stage GPU times, memory and BVH figures
 };
 

@@ -1,25 +1,76 @@
-// `wavepath devices`: lists the devices each backend can render on.
+// `wavepath devices`: lists the devices each backend can render on, numbered as --device
+// counts them with that backend. A backend without devices is said to have none; the
+// command fails only when neither has one.
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "backend/opencl/opencl_devices.h"
 #include "backend/vulkan/vulkan_context.h"
+#include "core/error.h"
 
 namespace wp {
+namespace {
 
-CLI::App* addDevicesCommand(CLI::App& app) {
-  return app.add_subcommand("devices", "List the devices wavepath can render on (use the index with --device)");
-}
+double gibibytes(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0 * 1024.0); }
 
-int runDevices() {
-  std::vector<VulkanDeviceInfo> devices = listVulkanDevices();
+// Prints the Vulkan devices; false when there are none.
+bool printVulkanDevices() {
   std::printf("Vulkan devices:\n");
+  std::vector<VulkanDeviceInfo> devices;
+  try {
+    devices = listVulkanDevices();
+  } catch (const Error& e) {
+    std::printf("  none: %s\n", e.what());
+    return false;
+  }
   for (size_t i = 0; i < devices.size(); ++i) {
     const VulkanDeviceInfo& d = devices[i];
     std::printf("  %zu: %s (%s), Vulkan %u.%u, %s, %.1f GiB device-local memory\n", i, d.name.c_str(), d.type.c_str(),
                 VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion), d.driver.c_str(),
-                double(d.deviceLocalBytes) / (1024.0 * 1024.0 * 1024.0));
+                gibibytes(d.deviceLocalBytes));
+  }
+  return !devices.empty();
+}
+
+// Prints the OpenCL devices of every platform; false when there are none.
+bool printOpenClDevices() {
+  std::printf("OpenCL devices:\n");
+  std::vector<OpenClDeviceInfo> devices;
+  try {
+    devices = listOpenClDevices();
+  } catch (const Error& e) {
+    std::printf("  none: %s\n", e.what());
+    return false;
+  }
+  if (devices.empty()) {
+    std::printf("  none: the OpenCL platforms have no devices\n");
+  }
+  for (size_t i = 0; i < devices.size(); ++i) {
+    const OpenClDeviceInfo& d = devices[i];
+    std::string missing = missingRequirement(d);
+    std::printf("  %zu: %s (%s) on %s, %u compute units, %.1f GiB global memory, driver %s%s\n", i, d.name.c_str(),
+                d.type.c_str(), d.platformName.c_str(), d.computeUnits, gibibytes(d.globalMemoryBytes),
+                d.driverVersion.c_str(), missing.empty() ? "" : ("; unusable: lacks " + missing).c_str());
+  }
+  return !devices.empty();
+}
+
+}  // namespace
+
+CLI::App* addDevicesCommand(CLI::App& app) {
+  return app.add_subcommand("devices",
+                            "List the Vulkan and OpenCL devices wavepath can render on (use the index with --device)");
+}
+
+int runDevices() {
+  bool vulkan = printVulkanDevices();
+  bool opencl = printOpenClDevices();
+  if (!vulkan && !opencl) {
+    std::fflush(stdout);
+    throw Error("no Vulkan or OpenCL device found; install mesa-vulkan-drivers (lavapipe) or pocl-opencl-icd, or a "
+                "GPU driver");
   }
   return 0;
 }

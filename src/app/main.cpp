@@ -8,7 +8,7 @@
 #include "core/error.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"wavepath: a wavefront path tracer for glTF scenes on Vulkan"};
+  CLI::App app{"wavepath: a wavefront path tracer for glTF scenes on Vulkan or OpenCL"};
   app.require_subcommand(1);
   wp::RenderOptions renderOptions;
   CLI::App* render = wp::addRenderCommand(app, renderOptions);

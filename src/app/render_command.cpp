@@ -10,9 +10,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/backend_factory.h"
 #include "app/commands.h"
 #include "app/progress_bar.h"
-#include "backend/vulkan/vulkan_backend.h"
 #include "bvh/gpu_scene.h"
 #include "bvh/instance_baking.h"
 #include "core/error.h"
@@ -79,11 +79,19 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--rr-start", s.russianRouletteStart, "First bounce at which Russian roulette may end a path");
   cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds)")
       ->check(CLI::Range(64u, 4194240u));
-  cmd->add_option("--backend", o.backend, "Compute backend")->check(CLI::IsMember({"vulkan"}));
-  cmd->add_option("--device", o.device, "Device index from 'wavepath devices' (default: the most capable)")
+  cmd->add_option("--backend", o.backend, "Compute backend: vulkan (the default) or opencl")
+      ->check(CLI::IsMember({"vulkan", "opencl"}));
+  cmd->add_option("--device", o.device,
+                  "Device index in the chosen backend's list from 'wavepath devices' (default: the most capable)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cl-dispatch", o.clDispatch,
+                  "OpenCL only: launch extend, shade and connect at the queue lengths read back each bounce "
+                  "(readback, the default, faster on PoCL) or at every path of the pass, the work items past the "
+                  "queue exiting at once (max)")
+      ->check(CLI::IsMember({"readback", "max"}));
   cmd->add_flag("--validate", o.validate,
-                "Run with the Khronos validation layer (with synchronization validation); fail on any error");
+                "Vulkan: run with the Khronos validation layer (with synchronization validation); OpenCL: build the "
+                "kernels with warnings as errors and check the queue counters; fail on any error");
   cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
   return cmd;
 }
@@ -101,16 +109,14 @@ int runRender(RenderOptions o) {
   resolveImageSize(o, scene);
   GpuScene gpuScene = packScene(bakeSingleUseMeshes(scene));
 
-  VulkanBackend backend(o.device, validate);
-  WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
+  BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
+  std::unique_ptr<Backend> backend = createBackend(choice);
+  WavefrontRenderer renderer(*backend, scene, gpuScene, o.settings);
   ProgressBar bar;
   RenderStats stats = renderer.render([&](double fraction) { bar.update(fraction); });
   bar.finish();
   RadianceImage image = renderer.image();
-  if (VulkanContext::validationErrorCount() > 0) {
-    throw Error("the Vulkan validation layer reported " + std::to_string(VulkanContext::validationErrorCount()) +
-                " errors (printed above); no image was written");
-  }
+  checkValidation(choice);
   writeImage(o.output, image);
 
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
@@ -119,7 +125,7 @@ int runRender(RenderOptions o) {
               "(%.1f M extension + %.1f M shadow rays) on %s\n",
               o.output.c_str(), o.settings.width, o.settings.height, o.settings.samplesPerPixel, stats.seconds, wall,
               double(stats.samples) / stats.seconds * 1e-6, rays / stats.seconds * 1e-6,
-              double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend.deviceName().c_str());
+              double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend->deviceName().c_str());
   if (o.timings) {
     printTimings(stats, gpuScene);
   }

@@ -1,0 +1,248 @@
+// OpenCL wavefront backend: kernels and buffers, passes as in-order launches sized without
+// indirect dispatch, per-kernel times from profiling events.
+#include "backend/opencl/opencl_backend.h"
+
+#include <algorithm>
+
+#include "backend/opencl/cl_check.h"
+#include "bvh/gpu_scene.h"
+#include "core/error.h"
+#include "shaders/opencl/bindings.h"
+
+namespace wp {
+namespace {
+
+// Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray and its
+// radiance.
+constexpr uint64_t kBytesPerPath =
+    2 * sizeof(gpu::PathRay) + sizeof(gpu::HitRecord) + sizeof(gpu::ShadowRay) + sizeof(glm::vec4);
+
+std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+
+template <typename T>
+OpenClBuffer uploadVector(cl_context context, const std::vector<T>& data) {
+  return OpenClBuffer(context, CL_MEM_READ_ONLY, data.size() * sizeof(T), data.data());
+}
+
+}  // namespace
+
+OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate)
+    : context_(std::make_unique<OpenClContext>(deviceIndex)), dispatchMode_(dispatch), validate_(validate) {
+  program_ = std::make_unique<OpenClProgram>(*context_, validate ? "-cl-std=CL1.2 -Werror" : "-cl-std=CL1.2");
+  for (int k = 0; k < kKernelCount; ++k) {
+    cl_int result = CL_SUCCESS;
+    kernels_[k] = clCreateKernel(program_->handle(), kernelName(Kernel(k)), &result);
+    CL_CHECK(result);
+  }
+}
+
+OpenClBackend::~OpenClBackend() {
+  clFinish(context_->queue);
+  for (auto& [kernel, event] : events_) {
+    clReleaseEvent(event);
+  }
+  for (cl_kernel kernel : kernels_) {
+    if (kernel != nullptr) {
+      clReleaseKernel(kernel);
+    }
+  }
+}
+
+std::string OpenClBackend::deviceName() const { return context_->device.name + " (OpenCL)"; }
+
+uint32_t OpenClBackend::maxPathsInFlight() const {
+  const OpenClDeviceInfo& device = context_->device;
+  // The two ray queues share the largest buffer; path state may take half the memory, the
+  // rest is for the scene and the image.
+  uint64_t byAllocation = device.maxAllocationBytes / (2 * sizeof(gpu::PathRay));
+  uint64_t byMemory = device.globalMemoryBytes / 2 / kBytesPerPath;
+  return uint32_t(std::min({byAllocation, byMemory, uint64_t(UINT32_MAX)}));
+}
+
+void OpenClBackend::bind(uint32_t binding, const OpenClBuffer& buffer) {
+  for (cl_kernel kernel : kernels_) {
+    CL_CHECK(clSetKernelArg(kernel, binding, sizeof(cl_mem), buffer.argument()));
+  }
+}
+
+void OpenClBackend::checkMemory(uint64_t bytes, uint64_t largest, const char* largestName) const {
+  const OpenClDeviceInfo& device = context_->device;
+  if (bytes > device.globalMemoryBytes) {
+    throw Error("the render needs " + mebibytes(bytes) + " of device memory but OpenCL device '" + device.name +
+                "' has " + mebibytes(device.globalMemoryBytes) +
+                "; lower the image size or --max-paths, or pick another --device");
+  }
+  if (largest > device.maxAllocationBytes) {
+    throw Error(std::string("the ") + largestName + " buffer (" + mebibytes(largest) +
+                ") exceeds the largest allocation OpenCL device '" + device.name + "' allows (" +
+                mebibytes(device.maxAllocationBytes) + "); lower the image size or --max-paths, or pick another --device");
+  }
+}
+
+void OpenClBackend::loadScene(const GpuScene& scene) {
+  clFinish(context_->queue);
+  cl_context context = context_->context;
+  sceneBuffers_[0] = uploadVector(context, scene.nodes);
+  sceneBuffers_[1] = uploadVector(context, scene.triangles);
+  sceneBuffers_[2] = uploadVector(context, scene.instances);
+  sceneBuffers_[3] = uploadVector(context, scene.planes);
+  sceneBuffers_[4] = uploadVector(context, scene.materials);
+  sceneBuffers_[5] = uploadVector(context, scene.lights);
+  sceneBytes_ = 0;
+  uint64_t largest = 0;
+  for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {
+    sceneBytes_ += sceneBuffers_[i].size();
+    largest = std::max(largest, sceneBuffers_[i].size());
+    bind(WP_BINDING_NODES + i, sceneBuffers_[i]);
+  }
+  checkMemory(sceneBytes_, largest, "scene");
+}
+
+void OpenClBackend::configure(const gpu::RenderParams& params) {
+  if (sceneBuffers_[0].handle() == nullptr) {
+    throw Error("internal: OpenClBackend::configure called before loadScene");
+  }
+  uint64_t maxPaths = params.counts.w;
+  uint64_t pixels = params.image.z;
+  uint64_t rayBytes = 2 * maxPaths * sizeof(gpu::PathRay);
+  uint64_t accumulationBytes = 2 * pixels * sizeof(glm::vec4);
+  uint64_t total = sceneBytes_ + sizeof(params) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters) +
+                   accumulationBytes;
+  checkMemory(total, std::max(rayBytes, accumulationBytes), rayBytes >= accumulationBytes ? "ray queue" : "image");
+
+  clFinish(context_->queue);
+  cl_context context = context_->context;
+  params_ = OpenClBuffer(context, CL_MEM_READ_ONLY, sizeof(params), &params);
+  if (rays_.handle() == nullptr || rays_.size() < rayBytes) {
+    rays_ = OpenClBuffer(context, CL_MEM_READ_WRITE, rayBytes);
+    hits_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::HitRecord));
+    shadowRays_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::ShadowRay));
+    pathRadiance_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(glm::vec4));
+    counters_ = OpenClBuffer(context, CL_MEM_READ_WRITE, sizeof(gpu::QueueCounters));
+  }
+  pixelCount_ = params.image.z;
+  accumulation_ = OpenClBuffer(context, CL_MEM_READ_WRITE, accumulationBytes);
+  const float zero = 0.0f;
+  CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,
+                               accumulation_.size(), 0, nullptr, nullptr));
+  CL_CHECK(clFinish(context_->queue));
+  bind(WP_BINDING_PARAMS, params_);
+  bind(WP_BINDING_RAYS, rays_);
+  bind(WP_BINDING_HITS, hits_);
+  bind(WP_BINDING_SHADOW_RAYS, shadowRays_);
+  bind(WP_BINDING_PATH_RADIANCE, pathRadiance_);
+  bind(WP_BINDING_COUNTERS, counters_);
+  bind(WP_BINDING_ACCUM, accumulation_);
+}
+
+void OpenClBackend::beginPass() {
+  countersStale_ = true;
+  passPaths_ = 0;
+  passBounces_ = 0;
+}
+
+std::array<uint32_t, WP_COUNTER_WORDS> OpenClBackend::readCounters() {
+  std::array<uint32_t, WP_COUNTER_WORDS> counters;
+  CL_CHECK(clEnqueueReadBuffer(context_->queue, counters_.handle(), CL_TRUE, 0, sizeof(counters), &counters, 0,
+                               nullptr, nullptr));
+  return counters;
+}
+
+uint32_t OpenClBackend::queueThreads(uint32_t word, uint32_t pathCount) {
+  if (dispatchMode_ == ClDispatch::Max) {
+    return pathCount;
+  }
+  if (countersStale_) {
+    lastCounters_ = readCounters();
+    countersStale_ = false;
+  }
+  return lastCounters_[word] * WP_WORKGROUP_SIZE;
+}
+
+void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) {
+  uint32_t pathCount = constants.pass.z;
+  uint32_t threads = size.threads;
+  if (size.source == DispatchSize::Source::RayQueue) {
+    threads = queueThreads(WP_COUNTER_EXTEND_DISPATCH, pathCount);
+  } else if (size.source == DispatchSize::Source::ShadowQueue) {
+    threads = queueThreads(WP_COUNTER_CONNECT_DISPATCH, pathCount);
+  }
+  passPaths_ = std::max(passPaths_, pathCount);
+  passBounces_ += kernel == Kernel::Extend;
+  // Generate and advance are the kernels that write the dispatch words.
+  countersStale_ = countersStale_ || kernel == Kernel::Generate || kernel == Kernel::Advance;
+  if (threads == 0) {
+    return;
+  }
+  int k = static_cast<int>(kernel);
+  CL_CHECK(clSetKernelArg(kernels_[k], WP_ARG_PASS, sizeof(constants), &constants));
+  size_t local = WP_WORKGROUP_SIZE;
+  size_t global = (size_t(threads) + local - 1) / local * local;
+  cl_event event = nullptr;
+  CL_CHECK(clEnqueueNDRangeKernel(context_->queue, kernels_[k], 1, nullptr, &global, &local, 0, nullptr, &event));
+  events_.emplace_back(k, event);
+}
+
+void OpenClBackend::checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& words) const {
+  // A queue never holds more than one entry per path, and each bounce traces at most one
+  // ray and one shadow ray per path.
+  uint64_t paths = passPaths_;
+  bool inBounds = words[WP_COUNTER_TOTAL_RAYS] <= paths * passBounces_ &&
+                  words[WP_COUNTER_TOTAL_SHADOW_RAYS] <= paths * passBounces_;
+  std::string queues;
+  for (uint32_t i = 0; i < 4; ++i) {
+    inBounds = inBounds && words[WP_COUNTER_RAYS + i] <= paths;
+    queues += (i > 0 ? ", " : "") + std::to_string(words[WP_COUNTER_RAYS + i]);
+  }
+  if (!inBounds) {
+    throw Error("OpenCL validation: the queue counters left their bounds in a pass of " + std::to_string(paths) +
+                " paths (queues " + queues + "); this is a bug, please report it with the command line used");
+  }
+}
+
+PassResult OpenClBackend::endPass() {
+  // Blocking: the in-order queue has finished every launch of the pass when it returns.
+  std::array<uint32_t, WP_COUNTER_WORDS> counters = readCounters();
+  PassResult result;
+  result.extensionRays = counters[WP_COUNTER_TOTAL_RAYS];
+  result.shadowRays = counters[WP_COUNTER_TOTAL_SHADOW_RAYS];
+  std::vector<std::pair<int, cl_event>> events = std::move(events_);
+  events_.clear();
+  std::string failed;
+  for (auto& [kernel, event] : events) {
+    cl_int status = CL_COMPLETE;
+    cl_ulong start = 0;
+    cl_ulong end = 0;
+    clGetEventInfo(event, CL_EVENT_COMMAND_EXECUTION_STATUS, sizeof(status), &status, nullptr);
+    if (status < 0 && failed.empty()) {
+      failed = std::string("the OpenCL kernel '") + kernelName(Kernel(kernel)) + "' failed with " +
+               cl::errorName(status) + "; lower --max-paths or the image size, or pick another --device";
+    }
+    if (clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_START, sizeof(start), &start, nullptr) == CL_SUCCESS &&
+        clGetEventProfilingInfo(event, CL_PROFILING_COMMAND_END, sizeof(end), &end, nullptr) == CL_SUCCESS &&
+        end > start) {
+      result.kernelMs[kernel] += double(end - start) * 1e-6;
+    }
+    clReleaseEvent(event);
+  }
+  if (!failed.empty()) {
+    throw Error(failed);
+  }
+  if (validate_) {
+    checkCounters(counters);
+  }
+  program_->cacheBinary();
+  return result;
+}
+
+Accumulation OpenClBackend::readAccumulation() {
+  std::vector<glm::vec4> both(2ull * pixelCount_);
+  CL_CHECK(clEnqueueReadBuffer(context_->queue, accumulation_.handle(), CL_TRUE, 0, both.size() * sizeof(glm::vec4),
+                               both.data(), 0, nullptr, nullptr));
+  Accumulation result;
+  result.sum.assign(both.begin(), both.begin() + pixelCount_);
+  result.sumSquares.assign(both.begin() + pixelCount_, both.end());
+  return result;
+}
+
+}  // namespace wp

@@ -1,0 +1,82 @@
+// The OpenCL implementation of the wavefront Backend: one kernel per stage from one
+// program, queue lengths handled without indirect dispatch (see ClDispatch).
+#pragma once
+
+#include <CL/cl.h>
+
+#include <array>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "backend/opencl/opencl_buffer.h"
+#include "backend/opencl/opencl_context.h"
+#include "backend/opencl/opencl_program.h"
+#include "render/backend.h"
+
+namespace wp {
+
+// How extend, shade and connect are sized, OpenCL 1.2 having no indirect dispatch.
+enum class ClDispatch {
+  // Every such launch covers all paths of the pass; work items past the queue length exit.
+  Max,
+  // The host reads the queue lengths back after generate and advance (a wait each bounce)
+  // and launches exactly those, skipping empty queues.
+  Readback,
+};
+
+class OpenClBackend final : public Backend {
+public:
+  // deviceIndex < 0 picks the most capable device. With `validate` the kernels build with
+  // warnings as errors and every pass checks that its queue counters stayed in bounds.
+  OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate);
+  ~OpenClBackend() override;
+
+  std::string deviceName() const override;
+  uint32_t maxPathsInFlight() const override;
+  void loadScene(const GpuScene& scene) override;
+  void configure(const gpu::RenderParams& params) override;
+  void beginPass() override;
+  void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
+  PassResult endPass() override;
+  Accumulation readAccumulation() override;
+
+private:
+  // Sets kernel argument `binding` (layout.h) of every kernel to `buffer`.
+  void bind(uint32_t binding, const OpenClBuffer& buffer);
+  // Work items for a launch sized by the queue whose dispatch word is `word`.
+  uint32_t queueThreads(uint32_t word, uint32_t pathCount);
+  // The counters buffer as words (WP_COUNTER_*), after everything enqueued so far.
+  std::array<uint32_t, WP_COUNTER_WORDS> readCounters();
+  // Throws unless a buffer set of `bytes` in total, the largest `largest`, fits the device.
+  void checkMemory(uint64_t bytes, uint64_t largest, const char* largestName) const;
+  void checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& counters) const;
+
+  std::unique_ptr<OpenClContext> context_;
+  std::unique_ptr<OpenClProgram> program_;
+  std::array<cl_kernel, kKernelCount> kernels_{};
+  ClDispatch dispatchMode_;
+  bool validate_;
+
+  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
+  std::array<OpenClBuffer, 6> sceneBuffers_;
+  uint64_t sceneBytes_ = 0;
+  OpenClBuffer params_;
+  OpenClBuffer rays_;
+  OpenClBuffer hits_;
+  OpenClBuffer shadowRays_;
+  OpenClBuffer pathRadiance_;
+  OpenClBuffer counters_;
+  OpenClBuffer accumulation_;
+  uint32_t pixelCount_ = 0;
+
+  // The current pass: each launch's kernel and profiling event, the counters as last read
+  // back and whether a kernel that writes the dispatch words ran since.
+  std::vector<std::pair<int, cl_event>> events_;
+  std::array<uint32_t, WP_COUNTER_WORDS> lastCounters_{};
+  bool countersStale_ = true;
+  uint32_t passPaths_ = 0;
+  uint32_t passBounces_ = 0;
+};
+
+}  // namespace wp

@@ -1,0 +1,44 @@
+// OpenCL buffer ownership.
+#include "backend/opencl/opencl_buffer.h"
+
+#include <utility>
+
+#include "backend/opencl/cl_check.h"
+
+namespace wp {
+
+namespace {
+// Placeholder size for empty buffers: one 16-byte element.
+constexpr uint64_t kMinimumSize = 16;
+}  // namespace
+
+OpenClBuffer::OpenClBuffer(cl_context context, cl_mem_flags flags, uint64_t size, const void* data)
+    : size_(size < kMinimumSize ? kMinimumSize : size) {
+  cl_int result = CL_SUCCESS;
+  bool copy = data != nullptr && size > 0;
+  mem_ = clCreateBuffer(context, flags | (copy ? CL_MEM_COPY_HOST_PTR : 0), size_, copy ? const_cast<void*>(data) : nullptr,
+                        &result);
+  CL_CHECK(result);
+}
+
+OpenClBuffer::~OpenClBuffer() {
+  if (mem_ != nullptr) {
+    clReleaseMemObject(mem_);
+  }
+}
+
+OpenClBuffer::OpenClBuffer(OpenClBuffer&& other) noexcept
+    : mem_(std::exchange(other.mem_, nullptr)), size_(std::exchange(other.size_, 0)) {}
+
+OpenClBuffer& OpenClBuffer::operator=(OpenClBuffer&& other) noexcept {
+  if (this != &other) {
+    if (mem_ != nullptr) {
+      clReleaseMemObject(mem_);
+    }
+    mem_ = std::exchange(other.mem_, nullptr);
+    size_ = std::exchange(other.size_, 0);
+  }
+  return *this;
+}
+
+}  // namespace wp
