@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,9 @@ struct SamplerCase {
   uint32_t flags;
   uint64_t seed = 0;  // set from the case's position in the list
 };
+
+// gtest prints parameters as bytes unless told otherwise.
+void PrintTo(const SamplerCase& c, std::ostream* out) { *out << c.name; }
 
 std::string caseName(const char* lobe, float roughness, float cosThetaO) {
   char buffer[96];
@@ -207,6 +211,8 @@ struct NormalCase {
   bool beckmann;
   uint64_t seed;
 };
+
+void PrintTo(const NormalCase& c, std::ostream* out) { *out << c.name; }
 
 std::vector<NormalCase> normalCases() {
   std::vector<NormalCase> cases;
