@@ -141,6 +141,8 @@ TEST(BadFlags, AreRejectedWithUsageHint) {
            {"render", scene.string(), "--mode", "guess"},
            {"render", scene.string(), "--width", "abc"},
            {"render", scene.string(), "--no-such-flag"},
+           {"render", scene.string(), "--backend", "nonsense"},
+           {"render", scene.string(), "--cl-dispatch", "sometimes"},
            {"render"},
            {"teleport"},
        }) {
@@ -175,10 +177,76 @@ TEST(NoDevice, DeviceIndexOutOfRange) {
   expectOneErrorLine(o.run, "wavepath devices");
 }
 
-TEST(Devices, ListsTheLavapipeDevice) {
+TEST(Devices, ListsTheLavapipeAndPoclDevices) {
   RunResult r = runWavepath({"devices"}, {}, 60);
   EXPECT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.out.find("0: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Vulkan devices:\n  0: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("OpenCL devices:\n  0: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("compute units"), std::string::npos) << r.out;
+}
+
+TEST(Devices, ABackendWithoutDevicesIsSaidToHaveNoneAndTheOtherStillListed) {
+  RunResult r = runWavepath({"devices"}, {"OCL_ICD_VENDORS=/nonexistent"}, 60);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("Vulkan devices:\n  0: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("OpenCL devices:\n  none: no OpenCL platform found"), std::string::npos) << r.out;
+}
+
+// The error line is the last line of stderr and the only error; notes (the OpenCL compile)
+// and a compiler log may come before it.
+void expectErrorAsLastLine(const RunResult& r, const std::string& phrase) {
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  std::string err = r.err;
+  while (!err.empty() && err.back() == '\n') {
+    err.pop_back();
+  }
+  std::string lastLine = err.substr(err.rfind('\n') == std::string::npos ? 0 : err.rfind('\n') + 1);
+  EXPECT_EQ(lastLine.rfind("wavepath: error: ", 0), 0u) << r.err;
+  EXPECT_NE(lastLine.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
+  EXPECT_EQ(err.find("wavepath: error: "), err.rfind("wavepath: error: ")) << "more than one error: " << r.err;
+}
+
+TEST(OpenCl, NoPlatformIsOneClearError) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  // ocl-icd reads the vendor ICDs from OCL_ICD_VENDORS instead of /etc/OpenCL/vendors.
+  Outcome o = renderExpectingFailure(scene, {"--backend", "opencl"}, {"OCL_ICD_VENDORS=/nonexistent"});
+  expectOneErrorLine(o.run, "no OpenCL platform found; install pocl-opencl-icd");
+  EXPECT_FALSE(std::filesystem::exists(o.output));
+}
+
+TEST(OpenCl, DeviceIndexOutOfRange) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  Outcome o = renderExpectingFailure(scene, {"--backend", "opencl", "--device", "99"});
+  expectOneErrorLine(o.run, "OpenCL devices; run 'wavepath devices'");
+}
+
+TEST(OpenCl, KernelBuildFailurePrintsTheCompilerLogThenOneErrorLine) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  Outcome o = renderExpectingFailure(scene, {"--backend", "opencl"},
+                                     {"WAVEPATH_CL_EXTRA_SOURCE=this is not OpenCL C"});
+  expectErrorAsLastLine(o.run, "the OpenCL kernels failed to build");
+  // The log names the line the compiler rejected (the source carries #line directives).
+  EXPECT_NE(o.run.err.find("WAVEPATH_CL_EXTRA_SOURCE:1:"), std::string::npos) << o.run.err;
+  EXPECT_FALSE(std::filesystem::exists(o.output));
+}
+
+TEST(OpenCl, TooLittleDeviceMemoryIsOneClearError) {
+  // The largest image, 16384 x 16384, needs 8 GiB for its running sums alone.
+  RunResult devices = runWavepath({"devices"}, {}, 60);
+  size_t list = devices.out.find("OpenCL devices:");
+  size_t unit = devices.out.find(" GiB global memory", list);
+  ASSERT_NE(unit, std::string::npos) << devices.out;
+  double gibibytes = std::stod(devices.out.substr(devices.out.rfind(", ", unit) + 2));
+  if (gibibytes >= 8.0) {
+    GTEST_SKIP() << "the OpenCL device has " << gibibytes << " GiB, enough for the largest image";
+  }
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  std::filesystem::path output = scratchDirectory("out") / "image.png";
+  RunResult r = runWavepath({"render", scene.string(), "-o", output.string(), "--backend", "opencl", "--width",
+                             "16384", "--height", "16384", "--spp", "1"},
+                            {}, 120);
+  expectErrorAsLastLine(r, "of device memory but OpenCL device");
+  EXPECT_FALSE(std::filesystem::exists(output));
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ std::string slurp(const std::filesystem::path& file) {
 RunResult runWavepath(const std::vector<std::string>& args, const std::vector<std::string>& env,
                       int timeoutSeconds) {
   std::filesystem::path dir = scratchDirectory("run");
-  std::string command = "env WAVEPATH_VALIDATION=1";
+  std::string command = "env WAVEPATH_VALIDATION=1 " + quote("WAVEPATH_CACHE_DIR=" WAVEPATH_TEST_CACHE_DIR);
   for (const std::string& e : env) {
     command += " " + quote(e);
   }

@@ -14,8 +14,9 @@ struct RunResult {
 };
 
 // Runs `wavepath args...` with extra environment assignments ("NAME=value"), with the
-// Vulkan validation layer on (WAVEPATH_VALIDATION=1) unless env overrides it; kills it
-// after timeoutSeconds so a hang fails the test instead of stalling the suite.
+// Vulkan validation layer on (WAVEPATH_VALIDATION=1) and the OpenCL program cache of the
+// test run (WAVEPATH_CACHE_DIR) unless env overrides them; kills it after timeoutSeconds so
+// a hang fails the test instead of stalling the suite.
 RunResult runWavepath(const std::vector<std::string>& args, const std::vector<std::string>& env = {},
                       int timeoutSeconds = 600);
 
