@@ -5,6 +5,7 @@
 #define WP_LAYOUT_H
 
 #include "portable.h"
+#include "thin_lens.h"
 
 WP_BEGIN
 
@@ -107,10 +108,7 @@ WP_STRUCT_END(GpuLight)
 
 // Per-frame settings, a uniform buffer (OpenCL: a constant argument).
 WP_STRUCT(RenderParams)
-  vec4 cameraPosition;  // xyz; w: unused
-  vec4 cameraRight;     // xyz: image-plane x axis scaled by tan(fovY/2) * aspect
-  vec4 cameraUp;        // xyz: image-plane y axis scaled by tan(fovY/2)
-  vec4 cameraForward;   // xyz: unit view direction
+  ThinLens camera;      // optics and placement of the camera (thin_lens.h)
   vec4 skyRadiance;     // rgb: constant sky radiance seen by rays that leave the scene
   uvec4 image;          // x: width, y: height, z: pixel count, w: seed
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,

@@ -4,10 +4,10 @@
 #ifndef WP_STAGES_H
 #define WP_STAGES_H
 
-#include "camera.h"
 #include "integrator.h"
 #include "layout.h"
 #include "rng.h"
+#include "thin_lens.h"
 #include "traverse.h"
 
 WP_BEGIN
@@ -44,8 +44,8 @@ WP_FN QueueCounters advanceCounters(QueueCounters c, uint queue) {
 
 // The camera ray of path slot `slot` of the pass `pc`: slot i is pixel (firstPixel + i) %
 // pixels of sample firstSample + (firstPixel + i) / pixels (see PassConstants), through a
-// uniformly jittered point of that pixel (a box filter), with the path's random stream
-// seeded from (pixel, sample, seed).
+// uniformly jittered point of that pixel (a box filter) and a point uniform on the lens
+// aperture, with the path's random stream seeded from (pixel, sample, seed).
 WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint pixels = params.image.z;
   uint linear = pc.pass.x + slot;
@@ -57,14 +57,17 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   float jx = rngFloat(rng);
   rng = rngNext(rng);
   float jy = rngFloat(rng);
+  rng = rngNext(rng);
+  float lensU = rngFloat(rng);
+  rng = rngNext(rng);
+  float lensV = rngFloat(rng);
   uint width = params.image.x;
   vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
-  vec3 dir = cameraRayDirection(xyz(params.cameraForward), xyz(params.cameraRight), xyz(params.cameraUp), film,
-                                width, params.image.y);
+  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.image.y, make_vec2(lensU, lensV));
 
   PathRay ray;
-  ray.origin = make_vec4(params.cameraPosition.x, params.cameraPosition.y, params.cameraPosition.z, asFloat(slot));
-  ray.direction = make_vec4(dir.x, dir.y, dir.z, 0.0f);
+  ray.origin = make_vec4(camera.origin.x, camera.origin.y, camera.origin.z, asFloat(slot));
+  ray.direction = make_vec4(camera.direction.x, camera.direction.y, camera.direction.z, 0.0f);
   ray.throughput = make_vec4(1.0f, 1.0f, 1.0f, 1.0f);
   ray.state = make_uvec4(rng, 0u, 0u, 0u);
   return ray;

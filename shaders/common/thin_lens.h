@@ -48,7 +48,8 @@ WP_FN float focalLengthForFieldOfView(float yfov, float filmHalfHeight) {
 // thin-lens equation 1/f = 1/D + 1/V. The film sits there, so focusing closer narrows the
 // field of view slightly, as real lenses "breathe".
 WP_FN float imageDistance(float focalLength, float focusDistance) {
-  return focalLength * focusDistance / (focusDistance - focalLength);
+  // f D / (D - f), written so that focusing at infinity (D = WP_FLT_MAX) does not overflow.
+  return focalLength / (1.0f - focalLength / focusDistance);
 }
 
 // Diameter, on the film, of the blur disc of a point at distance `objectDistance` when a

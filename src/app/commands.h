@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "app/camera_options.h"
 #include "render/settings.h"
 
 namespace CLI {
@@ -15,6 +16,7 @@ struct RenderOptions {
   std::string scene;
   std::string output;  // empty: <scene name>.png in the working directory
   RenderSettings settings;
+  CameraFlags camera;
   bool widthGiven = false;
   bool heightGiven = false;
   std::string backend = "vulkan";

@@ -93,6 +93,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                 "Vulkan: run with the Khronos validation layer (with synchronization validation); OpenCL: build the "
                 "kernels with warnings as errors and check the queue counters; fail on any error");
   cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
+  addCameraFlags(*cmd, o.camera);
   return cmd;
 }
 
@@ -108,6 +109,7 @@ int runRender(RenderOptions o) {
   Scene scene = loadScene(o.scene);
   resolveImageSize(o, scene);
   GpuScene gpuScene = packScene(bakeSingleUseMeshes(scene));
+  applyCameraFlags(o.camera, scene.camera, gpuScene);
 
   BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);
@@ -117,7 +119,7 @@ int runRender(RenderOptions o) {
   bar.finish();
   RadianceImage image = renderer.image();
   checkValidation(choice);
-  writeImage(o.output, image);
+  writeImage(o.output, image, displaySettings(o.camera, scene.camera.optics, image));
 
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   double rays = double(stats.extensionRays + stats.shadowRays);

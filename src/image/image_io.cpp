@@ -16,7 +16,8 @@
 #include <string>
 
 #include "core/error.h"
-#include "shaders/common/tonemap.h"
+#include "shaders/common/exposure.h"
+#include "shaders/common/tone_curves.h"
 
 namespace wp {
 namespace fs = std::filesystem;
@@ -93,10 +94,10 @@ void checkImageShape(const fs::path& path, const RadianceImage& image) {
     failWrite(path, "image is too large for the PNG and EXR writers; render fewer pixels");
 }
 
-std::vector<unsigned char> encodePng(const RadianceImage& image) {
+std::vector<unsigned char> encodePng(const RadianceImage& image, const DisplaySettings& d) {
   std::vector<unsigned char> rgb(size_t(image.width) * image.height * 3);
   for (size_t i = 0; i < image.mean.size(); ++i) {
-    uint32_t packed = gpu::packSrgba8(image.mean[i]);
+    uint32_t packed = gpu::packDisplay(image.mean[i], d.exposure, d.toneMapper, d.transfer, d.gamma);
     for (int c = 0; c < 3; ++c) rgb[3 * i + c] = static_cast<unsigned char>(packed >> (8 * c));
   }
   std::vector<unsigned char> png;
@@ -199,12 +200,18 @@ void checkOutputPath(const fs::path& path) {
               "directory '" + dir.string() + "' is not writable; fix its permissions or choose another path");
 }
 
-void writeImage(const fs::path& path, const RadianceImage& image) {
+float autoExposure(const RadianceImage& image) {
+  double sum = 0.0;
+  for (const glm::vec3& radiance : image.mean) sum += gpu::logLuminance(radiance);
+  return gpu::autoExposureScale(float(sum / double(std::max<size_t>(image.mean.size(), 1))));
+}
+
+void writeImage(const fs::path& path, const RadianceImage& image, const DisplaySettings& display) {
   checkOutputPath(path);
   checkImageShape(path, image);
   std::vector<unsigned char> bytes;
   if (lowerExtension(path) == ".png") {
-    bytes = encodePng(image);
+    bytes = encodePng(image, display);
     if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); render a smaller image");
   } else {
     bytes = encodeExr(path, image);

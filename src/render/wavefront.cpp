@@ -7,22 +7,14 @@
 #include <cmath>
 
 #include "bvh/gpu_scene.h"
+#include "render/camera_lens.h"
 #include "scene/scene.h"
 
 namespace wp {
 
 gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings) {
-  const Camera& camera = scene.camera;
-  float tanHalf = std::tan(camera.yfov * 0.5f);
-  float aspect = float(settings.width) / float(settings.height);
-  glm::vec3 right = glm::normalize(glm::cross(camera.forward, camera.up));
-  glm::vec3 up = glm::normalize(glm::cross(right, camera.forward));
-
   gpu::RenderParams p{};
-  p.cameraPosition = glm::vec4(camera.position, 0.0f);
-  p.cameraRight = glm::vec4(right * (tanHalf * aspect), 0.0f);
-  p.cameraUp = glm::vec4(up * tanHalf, 0.0f);
-  p.cameraForward = glm::vec4(glm::normalize(camera.forward), 0.0f);
+  p.camera = makeLens(scene.camera, settings.width, settings.height);
   p.skyRadiance = glm::vec4(scene.skyRadiance, 0.0f);
   uint32_t pixels = settings.width * settings.height;
   p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);

@@ -12,6 +12,13 @@
 //       (transformed by the inverse transpose of the node's world matrix and normalised).
 //       Its front side is the side +Y points to.
 //
+//   Physical camera settings in a camera's extras (all optional; the README quotes them):
+//   "cameras": [{"type": "perspective", ..., "extras": {"wavepath": {"fStop": 2.8,
+//       "focusDistance": 1.5, "focalLength": 50, "blades": 6, "bladeRotation": 0,
+//       "sensorWidth": 36, "sensorHeight": 24, "shutter": 0.01, "iso": 100}}}]
+//       focusDistance in scene units (metres), focalLength and the sensor in millimetres,
+//       shutter in seconds, bladeRotation in radians. Without fStop the camera is a pinhole.
+//
 //   "material" indexes the file's materials array; without it the shape gets the glTF
 //   default material (white, one-sided). The node's mesh, camera and children, if any, are
 //   loaded as usual alongside the shape. Unknown shapes, a radius that is not a number > 0,
@@ -27,6 +34,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/log.h"
+#include "scene/gltf_camera_extras.h"
 #include "scene/gltf_context.h"
 #include "scene/gltf_extensions.h"
 #include "scene/gltf_extras.h"
@@ -133,6 +141,7 @@ private:
       gltf::fail(ctx_, where, "the node's transform collapses the view or up direction; fix the node's scale");
     }
     scene_.camera = *result;
+    scene_.camera.optics = gltf::readCameraOptics(ctx_, static_cast<size_t>(index));
     scene_.hasCamera = true;
   }
 

@@ -48,13 +48,25 @@ struct Plane {
   uint32_t material = 0;
 };
 
-// Pinhole camera (thin lens comes with the camera issue).
+// Physical camera settings from the glTF camera's extras or the command line; 0 means unset.
+struct CameraOptics {
+  float fNumber = 0.0f;        // 0: a pinhole (everything sharp)
+  float focusDistance = 0.0f;  // metres along the view axis; 0: focus on what the centre sees
+  float focalLength = 0.0f;    // metres; 0: chosen so the glTF field of view holds at focus
+  uint32_t blades = 0;         // aperture blades; 0: a round aperture
+  float bladeRotation = 0.0f;  // radians
+  glm::vec2 sensorSize{0.036f, 0.024f};  // metres, full-frame 35 mm by default
+  float shutter = 0.0f;        // seconds; with iso, sets a physical exposure
+  float iso = 0.0f;
+};
+
 struct Camera {
   glm::vec3 position{0.0f};
   glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit
   glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, orthogonal to forward
   float yfov = 0.7853982f;               // vertical field of view in radians
   float aspectRatio = 0.0f;              // from the file; 0 = use the image's
+  CameraOptics optics;
 };
 
 struct Scene {
