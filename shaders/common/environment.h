@@ -34,6 +34,7 @@ WP_BEGIN
 #define WP_ENV_RADIANCE_BUFFER WP_GLOBAL_PTR(vec4) envRadiance,
 #define WP_ENV_CDF_BUFFERS WP_GLOBAL_PTR(float) envMarginal, WP_GLOBAL_PTR(float) envConditional,
 #define WP_ENV_CDF_BUFFER_ARGS envMarginal, envConditional,
+#define WP_ENV_RADIANCE_BUFFER_ARG envRadiance,
 #define WP_ENV_RADIANCE(i) envRadiance[i]
 #define WP_ENV_MARGINAL(i) envMarginal[i]
 #define WP_ENV_CONDITIONAL(i) envConditional[i]
@@ -41,8 +42,10 @@ WP_BEGIN
 #define WP_ENV_RADIANCE_BUFFER
 #define WP_ENV_CDF_BUFFERS
 #define WP_ENV_CDF_BUFFER_ARGS
+#define WP_ENV_RADIANCE_BUFFER_ARG
 #endif
 #define WP_ENV_BUFFERS WP_ENV_RADIANCE_BUFFER WP_ENV_CDF_BUFFERS
+#define WP_ENV_BUFFER_ARGS WP_ENV_RADIANCE_BUFFER_ARG WP_ENV_CDF_BUFFER_ARGS
 
 // The two-argument arctangent: OpenCL spells it atan2, GLSL and GLM atan(y, x).
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
@@ -51,11 +54,6 @@ WP_BEGIN
 #define wpAtan2(y, x) atan((y), (x))
 #endif
 
-// Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
-WP_STRUCT(GpuEnvironment)
-  vec4 transform;  // x: intensity (radiance multiplier); y: rotation about +y, radians; z, w: unused
-  uvec4 size;      // x: width, y: height (texels); z, w: unused
-WP_STRUCT_END(GpuEnvironment)
 
 WP_FN GpuEnvironment makeEnvironment(uint width, uint height, float intensity, float rotation) {
   GpuEnvironment env;

@@ -5,6 +5,7 @@
 #define WP_INTEGRATOR_H
 
 #include "bsdf.h"
+#include "environment.h"
 #include "layout.h"
 #include "lights.h"
 #include "rng.h"
@@ -14,8 +15,8 @@
 WP_BEGIN
 
 #ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SHADING_BUFFERS WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER
-#define WP_SHADING_BUFFER_ARGS WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG
+#define WP_SHADING_BUFFERS WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER WP_ENV_BUFFERS
+#define WP_SHADING_BUFFER_ARGS WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG WP_ENV_BUFFER_ARGS
 #else
 #define WP_SHADING_BUFFERS
 #define WP_SHADING_BUFFER_ARGS
@@ -37,12 +38,25 @@ WP_STRUCT_END(ShadeResult)
 
 WP_FN vec3 xyz(vec4 v) { return make_vec3(v.x, v.y, v.z); }
 
-// A ray that left the scene sees the constant sky. The sky is not light-sampled yet, so
-// every strategy counts it with weight 1.
-WP_FN ShadeResult shadeMiss(RenderParams params, PathRay ray) {
+// A ray that left the scene sees the sky. Next event estimation samples the sky with
+// probability sky.transform.z, so a BSDF-sampled ray's sky radiance is weighed against that.
+WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray) {
   ShadeResult r;
   r.flags = 0u;
-  r.radiance = xyz(ray.throughput) * xyz(params.skyRadiance);
+  vec3 direction = xyz(ray.direction);
+  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays: nothing to weigh against
+  float skyChoice = params.sky.transform.z;
+  float weight = 1.0f;
+  if (bsdfPdfOfRay > 0.0f && skyChoice > 0.0f) {
+    uint mode = params.mode.y;
+    if (mode == WP_MODE_NEE) {
+      weight = 0.0f;
+    } else if (mode == WP_MODE_MIS) {
+      float skyPdf = skyChoice * environmentPdf(WP_ENV_CDF_BUFFER_ARGS params.sky, direction);
+      weight = balanceHeuristic(bsdfPdfOfRay, skyPdf);
+    }
+  }
+  r.radiance = xyz(ray.throughput) * environmentRadiance(WP_ENV_RADIANCE_BUFFER_ARG params.sky, direction) * weight;
   return r;
 }
 
@@ -75,7 +89,8 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       if (mode == WP_MODE_NEE) {
         weight = 0.0f;
       } else if (mode == WP_MODE_MIS) {
-        weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(WP_LIGHT(s.light), t * t, dot(s.normal, wo)));
+        float pdf = (1.0f - params.sky.transform.z) * lightPdf(WP_LIGHT(s.light), t * t, dot(s.normal, wo));
+        weight = balanceHeuristic(bsdfPdfOfRay, pdf);
       }
     }
     r.radiance = throughput * emission * weight;
@@ -87,14 +102,25 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   Frame frame = makeFrame(dot(s.normal, wo) >= 0.0f ? s.normal : -s.normal);
   vec3 woLocal = frameToLocal(frame, wo);
 
-  if (mode != WP_MODE_BSDF && lightCount > 0u) {
+  float skyChoice = params.sky.transform.z;
+  if (mode != WP_MODE_BSDF && (lightCount > 0u || skyChoice > 0.0f)) {
     rng = rngNext(rng);
     float u0 = rngFloat(rng);
     rng = rngNext(rng);
     float u1 = rngFloat(rng);
     rng = rngNext(rng);
     float u2 = rngFloat(rng);
-    LightSample ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, s.position, make_vec3(u0, u1, u2));
+    // The sky or the triangles, chosen in proportion to their power (packScene); u0 is
+    // reused, rescaled, to select the triangle.
+    LightSample ls;
+    if (u0 < skyChoice) {
+      ls = sampleEnvironment(WP_ENV_BUFFER_ARGS params.sky, make_vec2(u1, u2));
+      ls.pdf *= skyChoice;
+    } else {
+      float u = min((u0 - skyChoice) / (1.0f - skyChoice), 0.99999994f);
+      ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, s.position, make_vec3(u, u1, u2));
+      ls.pdf *= 1.0f - skyChoice;
+    }
     vec3 wiLocal = frameToLocal(frame, ls.direction);
     vec3 unshadowed = ls.pdf > 0.0f ? bsdfEvalCos(m, woLocal, wiLocal) * ls.radiance : make_vec3(0.0f, 0.0f, 0.0f);
     if (maxComponent(unshadowed) > 0.0f) {

@@ -28,10 +28,13 @@ WP_BEGIN
 #define WP_BINDING_PATH_RADIANCE 10 // vec4[maxPaths]: radiance of each path this pass
 #define WP_BINDING_COUNTERS 11      // QueueCounters
 #define WP_BINDING_ACCUM 12         // vec4[2 * pixels]: sum of radiance, sum of squares
-#define WP_BINDING_RAYS_READ 13     // the rays buffer again, as texels
-#define WP_BINDING_HITS_READ 14     // the hits buffer again, as texels
-#define WP_BINDING_SHADOW_RAYS_READ 15  // the shadow-ray buffer again, as texels
-#define WP_BINDING_COUNT 16u
+#define WP_BINDING_ENV_RADIANCE 13  // vec4[] (texels): sky radiance per texel (environment.h)
+#define WP_BINDING_ENV_MARGINAL 14  // float[] (texels): the sky's row distribution
+#define WP_BINDING_ENV_CONDITIONAL 15  // float[] (texels): its column distributions
+#define WP_BINDING_RAYS_READ 16     // the rays buffer again, as texels (Vulkan only)
+#define WP_BINDING_HITS_READ 17     // the hits buffer again, as texels (Vulkan only)
+#define WP_BINDING_SHADOW_RAYS_READ 18  // the shadow-ray buffer again, as texels (Vulkan only)
+#define WP_BINDING_COUNT 19u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
@@ -106,10 +109,18 @@ WP_STRUCT(GpuLight)
                   // the side of cross(edge1, edge2)), z, w: unused
 WP_STRUCT_END(GpuLight)
 
+// Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
+WP_STRUCT(GpuEnvironment)
+  vec4 transform;  // x: intensity (radiance multiplier); y: rotation about +y, radians;
+                   // z: probability that next event estimation samples the sky rather than
+                   // the emissive triangles; w: unused
+  uvec4 size;      // x: width, y: height (texels); z, w: unused
+WP_STRUCT_END(GpuEnvironment)
+
 // Per-frame settings, a uniform buffer (OpenCL: a constant argument).
 WP_STRUCT(RenderParams)
   ThinLens camera;      // optics and placement of the camera (thin_lens.h)
-  vec4 skyRadiance;     // rgb: constant sky radiance seen by rays that leave the scene
+  GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
   uvec4 image;          // x: width, y: height, z: pixel count, w: seed
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
                         // w: number of lights

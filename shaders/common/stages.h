@@ -87,7 +87,7 @@ WP_FN HitRecord extendRay(WP_SCENE_BUFFERS RenderParams params, PathRay ray) {
 
 // Shade: the vertex `ray` reached (or the sky it left to), from its hit record.
 WP_FN ShadeResult shadePath(WP_SHADING_BUFFERS RenderParams params, PathRay ray, uvec4 hit) {
-  return hit.x == WP_INVALID ? shadeMiss(params, ray)
+  return hit.x == WP_INVALID ? shadeMiss(WP_SHADING_BUFFER_ARGS params, ray)
                              : shadeHit(WP_SHADING_BUFFER_ARGS params, ray, asFloat(hit.x), hit.y, hit.z);
 }
 

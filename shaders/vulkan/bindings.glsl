@@ -14,6 +14,9 @@ layout(binding = WP_BINDING_INSTANCES) uniform usamplerBuffer instanceTexels;
 layout(binding = WP_BINDING_PLANES) uniform usamplerBuffer planeTexels;
 layout(binding = WP_BINDING_MATERIALS) uniform usamplerBuffer materialTexels;
 layout(binding = WP_BINDING_LIGHTS) uniform usamplerBuffer lightTexels;
+layout(binding = WP_BINDING_ENV_RADIANCE) uniform usamplerBuffer skyRadianceTexels;
+layout(binding = WP_BINDING_ENV_MARGINAL) uniform usamplerBuffer skyMarginalTexels;
+layout(binding = WP_BINDING_ENV_CONDITIONAL) uniform usamplerBuffer skyConditionalTexels;
 layout(binding = WP_BINDING_RAYS_READ) uniform usamplerBuffer rayTexels;
 layout(binding = WP_BINDING_HITS_READ) uniform usamplerBuffer hitTexels;
 layout(binding = WP_BINDING_SHADOW_RAYS_READ) uniform usamplerBuffer shadowRayTexels;
@@ -103,6 +106,9 @@ ShadowRay loadShadowRay(uint i) {
 #define WP_PLANE(i) loadPlane(i)
 #define WP_MATERIAL(i) loadMaterial(i)
 #define WP_LIGHT(i) loadLight(i)
+#define WP_ENV_RADIANCE(i) WP_FLOATS(skyRadianceTexels, i, 1u, 0u)
+#define WP_ENV_MARGINAL(i) uintBitsToFloat(texelFetch(skyMarginalTexels, int(i)).x)
+#define WP_ENV_CONDITIONAL(i) uintBitsToFloat(texelFetch(skyConditionalTexels, int(i)).x)
 
 uint bounceParity() { return pc.pass.w & 1u; }
 

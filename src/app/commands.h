@@ -17,6 +17,9 @@ struct RenderOptions {
   std::string output;  // empty: <scene name>.png in the working directory
   RenderSettings settings;
   CameraFlags camera;
+  std::string sky;              // an .hdr or .exr sky replacing the scene's; empty: keep it
+  float skyIntensity = 1.0f;
+  float skyRotationDegrees = 0.0f;
   bool widthGiven = false;
   bool heightGiven = false;
   std::string backend = "vulkan";

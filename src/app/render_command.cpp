@@ -94,6 +94,13 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                 "kernels with warnings as errors and check the queue counters; fail on any error");
   cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
   addCameraFlags(*cmd, o.camera);
+  cmd->add_option("--sky", o.sky, "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar");
+  cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
+  cmd->add_option("--sky-rotation", o.skyRotationDegrees, "Rotation of the sky about +y, in degrees");
+  static const std::map<std::string, bool> onOff = {{"on", true}, {"off", false}};
+  cmd->add_option("--sky-sampling", s.skySampling,
+                  "on: next event estimation samples the sky by luminance (default); off: only BSDF rays find it")
+      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
   return cmd;
 }
 
@@ -107,6 +114,11 @@ int runRender(RenderOptions o) {
   checkOutputPath(o.output);
 
   Scene scene = loadScene(o.scene);
+  if (!o.sky.empty()) {
+    scene.sky = loadEnvironmentMap(o.sky);
+  }
+  scene.skyIntensity = o.skyIntensity;
+  scene.skyRotation = glm::radians(o.skyRotationDegrees);
   resolveImageSize(o, scene);
   GpuScene gpuScene = packScene(bakeSingleUseMeshes(scene));
   applyCameraFlags(o.camera, scene.camera, gpuScene);

@@ -5,10 +5,12 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "bvh/bvh_builder.h"
 #include "core/log.h"
+#include "shaders/common/environment.h"
 #include "shaders/common/traverse.h"
 
 namespace wp {
@@ -238,6 +240,21 @@ void appendLights(const Scene& scene, const Mesh& mesh, const PackedMesh& packed
   }
 }
 
+// Uploads the sky and sets the probability that next event estimation samples it rather
+// than the triangles: in proportion to power, the sky's through the scene's bounding sphere
+// and the triangles' pi * luminance * area (per emitting side).
+void packSky(const Scene& scene, double trianglePower, GpuScene& out) {
+  EnvironmentMap sky = scene.sky.width > 0 ? scene.sky : makeEnvironmentMap(1, 1, {glm::vec3(0.0f)});
+  out.skyRadiance = sky.radiance;
+  out.skyMarginal = sky.marginalCdf;
+  out.skyConditional = sky.conditionalCdf;
+  out.sky = gpu::makeEnvironment(sky.width, sky.height, scene.skyIntensity, scene.skyRotation);
+  double radius = 0.5 * glm::length(out.boundsMax - out.boundsMin);
+  double skyPower = scene.sky.width > 0 ? environmentPower(sky, scene.skyIntensity, radius > 0.0 ? radius : 1.0) : 0.0;
+  double total = skyPower + std::numbers::pi * trianglePower;
+  out.sky.transform.z = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
+}
+
 }  // namespace
 
 GpuScene packScene(const Scene& scene) {
@@ -297,6 +314,11 @@ GpuScene packScene(const Scene& scene) {
     out.instances.push_back(inst);
   }
   buildLightTable(out.lights, power);
+  double trianglePower = 0.0;
+  for (double p : power) {
+    trianglePower += p;
+  }
+  packSky(scene, trianglePower, out);
 
   for (const Material& material : scene.materials) {
     out.materials.push_back({glm::vec4(material.baseColor, material.alpha),

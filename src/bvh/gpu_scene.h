@@ -34,6 +34,12 @@ struct GpuScene {
   // World-space emissive triangles: for each mesh instance in `instances` order, its mesh's
   // emissive non-degenerate triangles in the mesh's original order.
   std::vector<gpu::GpuLight> lights;
+  // The sky (environment.h): radiance texels, row and column distributions, settings. A
+  // scene without a sky gets one black texel, never sampled.
+  std::vector<glm::vec4> skyRadiance;
+  std::vector<float> skyMarginal;
+  std::vector<float> skyConditional;
+  gpu::GpuEnvironment sky{};
   std::vector<GpuMeshRange> meshes;  // one per scene mesh
   uint32_t tlasRoot = 0;
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds of the instances (planes are

@@ -12,7 +12,8 @@ static_assert(sizeof(GpuPlane) == 32);
 static_assert(sizeof(GpuMaterial) == 32);
 static_assert(sizeof(GpuLight) == 80);
 static_assert(sizeof(ThinLens) == 80);
-static_assert(sizeof(RenderParams) == 144);
+static_assert(sizeof(GpuEnvironment) == 32);
+static_assert(sizeof(RenderParams) == 160);
 static_assert(sizeof(PathRay) == 64);
 static_assert(sizeof(HitRecord) == 16);
 static_assert(sizeof(ShadowRay) == 48);
@@ -21,6 +22,6 @@ static_assert(offsetof(QueueCounters, extendDispatch) == WP_COUNTER_EXTEND_DISPA
 static_assert(offsetof(QueueCounters, connectDispatch) == WP_COUNTER_CONNECT_DISPATCH * 4);
 static_assert(offsetof(QueueCounters, totals) == WP_COUNTER_TOTAL_RAYS * 4);
 static_assert(sizeof(PassConstants) == 16);
-static_assert(offsetof(RenderParams, image) == 96);
+static_assert(offsetof(RenderParams, image) == 112);
 
 }  // namespace wp::gpu

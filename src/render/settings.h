@@ -22,6 +22,9 @@ struct RenderSettings {
   // Paths in flight per sample pass: bounds GPU memory (about 200 bytes a path) whatever
   // the image size.
   uint32_t maxPaths = 1u << 20;
+  // Next event estimation samples the sky by its luminance (environment.h); off, only rays
+  // that BSDF sampling sends out find it (to show what sky sampling is worth).
+  bool skySampling = true;
 };
 
 }  // namespace wp

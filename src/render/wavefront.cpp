@@ -15,7 +15,10 @@ namespace wp {
 gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings) {
   gpu::RenderParams p{};
   p.camera = makeLens(scene.camera, settings.width, settings.height);
-  p.skyRadiance = glm::vec4(scene.skyRadiance, 0.0f);
+  p.sky = gpuScene.sky;
+  if (!settings.skySampling) {
+    p.sky.transform.z = 0.0f;  // the sky is then found by BSDF sampling alone
+  }
   uint32_t pixels = settings.width * settings.height;
   p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);
   uint32_t mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS

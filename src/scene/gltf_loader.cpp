@@ -85,7 +85,7 @@ public:
       note(ctx_.file + " has no camera: looking at the whole scene from +z with a 45 degree vertical field of view");
     }
     if (!hasEmitters()) {
-      scene_.skyRadiance = glm::vec3(1.0f);
+      scene_.sky = makeEnvironmentMap(1, 1, {glm::vec3(1.0f)});
       note(ctx_.file + " has no emissive triangles: lighting it with a constant white sky");
     }
     return std::move(scene_);

@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/environment_map.h"
+
 namespace wp {
 
 struct Material {
@@ -77,7 +79,12 @@ struct Scene {
   std::vector<Plane> planes;
   Camera camera;
   bool hasCamera = false;           // false: the camera was framed automatically
-  glm::vec3 skyRadiance{0.0f};      // constant sky; white when the scene has no emitters
+  // The sky seen by rays that leave the scene: an equirectangular radiance map (1x1 is a
+  // constant sky; empty is black), white when the scene has no emitters. Intensity scales
+  // it, rotation turns it about +y (radians).
+  EnvironmentMap sky;
+  float skyIntensity = 1.0f;
+  float skyRotation = 0.0f;
 };
 
 }  // namespace wp

@@ -88,12 +88,20 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
   sceneBuffers_[3] = uploadVector(context, scene.planes);
   sceneBuffers_[4] = uploadVector(context, scene.materials);
   sceneBuffers_[5] = uploadVector(context, scene.lights);
+  skyBuffers_[0] = uploadVector(context, scene.skyRadiance);
+  skyBuffers_[1] = uploadVector(context, scene.skyMarginal);
+  skyBuffers_[2] = uploadVector(context, scene.skyConditional);
   sceneBytes_ = 0;
   uint64_t largest = 0;
   for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {
     sceneBytes_ += sceneBuffers_[i].size();
     largest = std::max(largest, sceneBuffers_[i].size());
     bind(WP_BINDING_NODES + i, sceneBuffers_[i]);
+  }
+  for (uint32_t i = 0; i < skyBuffers_.size(); ++i) {
+    sceneBytes_ += skyBuffers_[i].size();
+    largest = std::max(largest, skyBuffers_[i].size());
+    bind(WP_BINDING_ENV_RADIANCE + i, skyBuffers_[i]);
   }
   checkMemory(sceneBytes_, largest, "scene");
 }

@@ -59,7 +59,8 @@ private:
   bool validate_;
 
   // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
-  std::array<OpenClBuffer, 6> sceneBuffers_;
+  std::array<OpenClBuffer, 6> sceneBuffers_;  // bindings WP_BINDING_NODES .. WP_BINDING_LIGHTS
+  std::array<OpenClBuffer, 3> skyBuffers_;    // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL
   uint64_t sceneBytes_ = 0;
   OpenClBuffer params_;
   OpenClBuffer rays_;

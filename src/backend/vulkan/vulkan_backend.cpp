@@ -47,6 +47,9 @@ VkDescriptorType descriptorType(uint32_t binding) {
     case WP_BINDING_PLANES:
     case WP_BINDING_MATERIALS:
     case WP_BINDING_LIGHTS:
+    case WP_BINDING_ENV_RADIANCE:
+    case WP_BINDING_ENV_MARGINAL:
+    case WP_BINDING_ENV_CONDITIONAL:
     case WP_BINDING_RAYS_READ:
     case WP_BINDING_HITS_READ:
     case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -191,6 +194,9 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   uploadVector(*context_, sceneBuffers_[3], scene.planes);
   uploadVector(*context_, sceneBuffers_[4], scene.materials);
   uploadVector(*context_, sceneBuffers_[5], scene.lights);
+  uploadVector(*context_, sceneBuffers_[6], scene.skyRadiance);
+  uploadVector(*context_, sceneBuffers_[7], scene.skyMarginal);
+  uploadVector(*context_, sceneBuffers_[8], scene.skyConditional);
   if (params_.handle() != VK_NULL_HANDLE) {
     writeDescriptors();
   }
@@ -232,7 +238,7 @@ void VulkanBackend::writeDescriptors() {
   std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers = {
       &params_,      &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3], &sceneBuffers_[4],
       &sceneBuffers_[5], &rays_,        &hits_,            &shadowRays_,      &pathRadiance_,    &counters_,
-      &accumulation_, &rays_,           &hits_,            &shadowRays_};
+      &accumulation_, &sceneBuffers_[6], &sceneBuffers_[7], &sceneBuffers_[8], &rays_, &hits_, &shadowRays_};
   for (VkBufferView view : texelViews_) {
     vkDestroyBufferView(context_->device, view, nullptr);
   }
@@ -248,7 +254,9 @@ void VulkanBackend::writeDescriptors() {
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = type;
     if (type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
-      views[i] = texelView(*buffers[i]);
+      // The sky's distributions are arrays of single floats; everything else is vec4s.
+      bool scalars = i == WP_BINDING_ENV_MARGINAL || i == WP_BINDING_ENV_CONDITIONAL;
+      views[i] = texelView(*buffers[i], scalars ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_UINT);
       writes[i].pTexelBufferView = &views[i];
     } else {
       infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
@@ -258,8 +266,9 @@ void VulkanBackend::writeDescriptors() {
   vkUpdateDescriptorSets(context_->device, WP_BINDING_COUNT, writes.data(), 0, nullptr);
 }
 
-VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer) {
-  uint64_t texels = buffer.size() / 16;
+VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer, VkFormat format) {
+  uint64_t texelBytes = format == VK_FORMAT_R32_UINT ? 4 : 16;
+  uint64_t texels = buffer.size() / texelBytes;
   uint64_t limit = context_->properties.limits.maxTexelBufferElements;
   if (texels > limit) {
     throw Error("a scene or queue buffer of " + std::to_string(texels) + " texels exceeds this device's limit of " +
@@ -267,9 +276,9 @@ VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer) {
   }
   VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
   info.buffer = buffer.handle();
-  info.format = VK_FORMAT_R32G32B32A32_UINT;
+  info.format = format;
   info.offset = 0;
-  info.range = texels * 16;
+  info.range = texels * texelBytes;
   VkBufferView view;
   VK_CHECK(vkCreateBufferView(context_->device, &info, nullptr, &view));
   texelViews_.push_back(view);

@@ -30,8 +30,8 @@ public:
 private:
   void createPipelines();
   void writeDescriptors();
-  // A RGBA32UI view of the whole buffer (kept until the descriptors are rewritten).
-  VkBufferView texelView(const VulkanBuffer& buffer);
+  // A view of the whole buffer as texels of `format` (RGBA32UI or R32UI) (kept until the descriptors are rewritten).
+  VkBufferView texelView(const VulkanBuffer& buffer, VkFormat format);
   void barrier(VkPipelineStageFlags dstStages, VkAccessFlags dstAccess);
   void timestamp(int kernel);
 
@@ -46,8 +46,9 @@ private:
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
   std::vector<VkBufferView> texelViews_;
 
-  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
-  std::array<VulkanBuffer, 6> sceneBuffers_;
+  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS, then the sky's
+  // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL.
+  std::array<VulkanBuffer, 9> sceneBuffers_;
   VulkanBuffer params_;
   VulkanBuffer rays_;
   VulkanBuffer hits_;
