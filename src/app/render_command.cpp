@@ -113,7 +113,7 @@ int runRender(RenderOptions o) {
   }
   checkOutputPath(o.output);
 
-  Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene, o.sky.empty());
   if (!o.sky.empty()) {
     scene.sky = loadEnvironmentMap(o.sky);
   }

@@ -67,8 +67,8 @@ bool hasArea(const Mesh& mesh, size_t triangle) {
 
 class SceneBuilder {
 public:
-  explicit SceneBuilder(const gltf::Context& ctx)
-      : ctx_(ctx), sceneMeshOf_(ctx.model.meshes.size(), kNotConverted) {}
+  SceneBuilder(const gltf::Context& ctx, bool defaultSky)
+      : ctx_(ctx), defaultSky_(defaultSky), sceneMeshOf_(ctx.model.meshes.size(), kNotConverted) {}
 
   Scene build() {
     scene_.materials = gltf::convertMaterials(ctx_);
@@ -84,7 +84,7 @@ public:
       scene_.camera = frameScene(scene_);
       note(ctx_.file + " has no camera: looking at the whole scene from +z with a 45 degree vertical field of view");
     }
-    if (!hasEmitters()) {
+    if (defaultSky_ && !hasEmitters()) {
       scene_.sky = makeEnvironmentMap(1, 1, {glm::vec3(1.0f)});
       note(ctx_.file + " has no emissive triangles: lighting it with a constant white sky");
     }
@@ -202,6 +202,7 @@ private:
   }
 
   const gltf::Context& ctx_;
+  const bool defaultSky_;
   Scene scene_;
   uint32_t defaultMaterial_ = 0;
   std::vector<int> sceneMeshOf_;  // glTF mesh -> index in scene_.meshes, kNotConverted or kNoTriangles
@@ -209,11 +210,11 @@ private:
 
 }  // namespace
 
-Scene loadScene(const std::filesystem::path& file) {
+Scene loadScene(const std::filesystem::path& file, bool defaultSky) {
   const tinygltf::Model model = gltf::parseGltfFile(file);
   const gltf::Context ctx{file.string(), model};
   gltf::checkExtensions(ctx);
-  return SceneBuilder(ctx).build();
+  return SceneBuilder(ctx, defaultSky).build();
 }
 
 }  // namespace wp
