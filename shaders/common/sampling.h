@@ -31,26 +31,29 @@ WP_FN vec3 frameToLocal(Frame f, vec3 v) {
   return make_vec3(dot(v, f.tangent), dot(v, f.bitangent), dot(v, f.normal));
 }
 
-// Cosine-weighted direction on the +z hemisphere (Malley's method through the concentric
-// disk map, which keeps strata compact). Density: cosineHemispherePdf(z).
-WP_FN vec3 sampleCosineHemisphere(vec2 u) {
+// A point uniform over the unit disk by Shirley & Chiu's concentric map (1997, "A low
+// distortion map between disk and square"), which keeps strata of u compact on the lens.
+WP_FN vec2 sampleConcentricDisk(vec2 u) {
   float ox = 2.0f * u.x - 1.0f;
   float oy = 2.0f * u.y - 1.0f;
+  if (ox == 0.0f && oy == 0.0f) return make_vec2(0.0f, 0.0f);
   float r;
   float phi;
-  if (ox == 0.0f && oy == 0.0f) {
-    r = 0.0f;
-    phi = 0.0f;
-  } else if (fabs(ox) > fabs(oy)) {
+  if (fabs(ox) > fabs(oy)) {
     r = ox;
     phi = (WP_PI * 0.25f) * (oy / ox);
   } else {
     r = oy;
     phi = (WP_PI * 0.5f) - (WP_PI * 0.25f) * (ox / oy);
   }
-  float x = r * cos(phi);
-  float y = r * sin(phi);
-  return make_vec3(x, y, sqrt(max(0.0f, 1.0f - x * x - y * y)));
+  return make_vec2(r * cos(phi), r * sin(phi));
+}
+
+// Cosine-weighted direction on the +z hemisphere (Malley's method: a uniform disk point
+// lifted to the hemisphere). Density: cosineHemispherePdf(z).
+WP_FN vec3 sampleCosineHemisphere(vec2 u) {
+  vec2 d = sampleConcentricDisk(u);
+  return make_vec3(d.x, d.y, sqrt(max(0.0f, 1.0f - d.x * d.x - d.y * d.y)));
 }
 
 // Solid-angle density of sampleCosineHemisphere for a direction with cos(theta) = cosTheta.

@@ -89,24 +89,6 @@ WP_FN ThinLens withBladedAperture(ThinLens lens, uint blades, float rotation) {
   return lens;
 }
 
-// A point uniform over the unit disk by Shirley & Chiu's concentric map (1997, "A low
-// distortion map between disk and square"), which keeps strata of u compact on the lens.
-WP_FN vec2 sampleConcentricDisk(vec2 u) {
-  float ox = 2.0f * u.x - 1.0f;
-  float oy = 2.0f * u.y - 1.0f;
-  if (ox == 0.0f && oy == 0.0f) return make_vec2(0.0f, 0.0f);
-  float r;
-  float phi;
-  if (fabs(ox) > fabs(oy)) {
-    r = ox;
-    phi = (WP_PI * 0.25f) * (oy / ox);
-  } else {
-    r = oy;
-    phi = (WP_PI * 0.5f) - (WP_PI * 0.25f) * (ox / oy);
-  }
-  return make_vec2(r * cos(phi), r * sin(phi));
-}
-
 // A point uniform over the area of the regular polygon with `sides` (>= 3) corners on the
 // unit circle, the first at angle `rotation`: u.x picks one of the equal triangles fanned
 // from the centre (its remainder is reused, still uniform), then a uniform point in it.

@@ -6,7 +6,7 @@
 
 WP_BEGIN
 
-// Exposure and the tone curve will be applied to linear radiance here, before linearToSrgb.
+// Exposure and the tone curves that come before this encoding are in exposure.h and tone_curves.h.
 
 // The sRGB opto-electronic transfer function (IEC 61966-2-1), exact piecewise form, for c
 // in [0, 1].
