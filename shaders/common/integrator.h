@@ -46,9 +46,24 @@ WP_FN ShadeResult shadeMiss(RenderParams params, PathRay ray) {
   return r;
 }
 
+// The biased contribution clamp (RenderParams.shading.y, 0 = off) on what a path adds
+// after its first vertex; light seen directly by the camera is never clamped.
+WP_FN vec3 clampedContribution(RenderParams params, vec3 c) {
+  float limit = asFloat(params.shading.y);
+  return limit > 0.0f ? clampContribution(c, limit) : c;
+}
+
 // Bounce numbering follows Cycles' "max bounces": the camera ray hits the vertex of bounce
 // 0, and with params.mode.x = D the path gathers light at vertices 0..D (next event
 // estimation there, or emission found by the ray leaving them), so D = 0 is direct light.
+//
+// Delta lobes (smooth mirror and glass) cannot be light-sampled: evalBsdf gives them no
+// value, so next event estimation counts only a material's other lobes, and a delta sample
+// stores pdf 0 on its ray so that the emission it finds gets MIS weight 1 in every mode.
+//
+// Media: a ray that reaches the back side of a surface travelled inside it, so the
+// material's KHR_materials_volume attenuation applies over t (Beer's law). This assumes
+// closed meshes and media that do not nest or overlap.
 WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
                            uint primitive) {
   ShadeResult r;
@@ -56,16 +71,20 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   r.radiance = make_vec3(0.0f, 0.0f, 0.0f);
   vec3 direction = xyz(ray.direction);
   vec3 throughput = xyz(ray.throughput);
-  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays: nothing to weigh against
+  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays and delta samples: nothing to weigh against
   uint rng = ray.state.x;
   uint bounce = ray.state.y;
   uint maxBounces = params.mode.x;
   uint mode = params.mode.y;
   uint lightCount = params.mode.w;
+  uint bsdfFlags = params.shading.x;
 
   SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t);
   GpuMaterial m = WP_MATERIAL(s.material);
   vec3 wo = -direction;
+  if (dot(s.normal, wo) < 0.0f) {
+    throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
+  }
 
   vec3 emission = emittedRadiance(xyz(m.emission), m.emission.w != 0.0f, s.normal, wo);
   if (maxComponent(emission) > 0.0f) {
@@ -79,12 +98,15 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       }
     }
     r.radiance = throughput * emission * weight;
+    if (bounce > 0u) {
+      r.radiance = clampedContribution(params, r.radiance);
+    }
   }
   if (bounce > maxBounces) {
     return r;
   }
 
-  Frame frame = makeFrame(dot(s.normal, wo) >= 0.0f ? s.normal : -s.normal);
+  Frame frame = makeFrame(s.normal);
   vec3 woLocal = frameToLocal(frame, wo);
 
   if (mode != WP_MODE_BSDF && lightCount > 0u) {
@@ -95,28 +117,35 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
     rng = rngNext(rng);
     float u2 = rngFloat(rng);
     LightSample ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, s.position, make_vec3(u0, u1, u2));
-    vec3 wiLocal = frameToLocal(frame, ls.direction);
-    vec3 unshadowed = ls.pdf > 0.0f ? bsdfEvalCos(m, woLocal, wiLocal) * ls.radiance : make_vec3(0.0f, 0.0f, 0.0f);
+    BsdfEval e = noEval();
+    if (ls.pdf > 0.0f) {
+      e = evalBsdf(m, woLocal, frameToLocal(frame, ls.direction), bsdfFlags);
+    }
+    vec3 unshadowed = e.fCos * ls.radiance;
     if (maxComponent(unshadowed) > 0.0f) {
-      float weight = mode == WP_MODE_MIS ? balanceHeuristic(ls.pdf, bsdfPdf(m, woLocal, wiLocal)) : 1.0f;
+      float weight = mode == WP_MODE_MIS ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
       vec3 origin = offsetRayOrigin(s.position, s.normal, ls.direction);
       r.shadow.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
       r.shadow.direction = make_vec4(ls.direction.x, ls.direction.y, ls.direction.z,
                                      ls.distance * WP_SHADOW_RAY_SHORTEN);
-      vec3 c = throughput * unshadowed * (weight / ls.pdf);
+      vec3 c = clampedContribution(params, throughput * unshadowed * (weight / ls.pdf));
       r.shadow.contribution = make_vec4(c.x, c.y, c.z, 0.0f);
       r.flags |= WP_SHADE_SHADOW;
     }
   }
 
   // From the last vertex a ray is still traced, only to collect emission the light sample
-  // did not cover (MIS) or all of it (BSDF sampling); with NEE alone it would find nothing.
-  if (bounce < maxBounces || mode != WP_MODE_NEE) {
-    rng = rngNext(rng);
-    float u0 = rngFloat(rng);
-    rng = rngNext(rng);
-    float u1 = rngFloat(rng);
-    BsdfSample bs = bsdfSample(m, woLocal, make_vec2(u0, u1));
+  // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
+  // with NEE alone, what only a delta lobe reaches.
+  rng = rngNext(rng);
+  float u0 = rngFloat(rng);
+  rng = rngNext(rng);
+  float u1 = rngFloat(rng);
+  rng = rngNext(rng);
+  float u2 = rngFloat(rng);
+  MaterialSample bs = sampleBsdf(m, woLocal, make_vec3(u0, u1, u2), bsdfFlags);
+  bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
+  if (bounce < maxBounces || mode != WP_MODE_NEE || isDelta) {
     vec3 nextThroughput = throughput * bs.weight;
     float survival = 1.0f;
     if (bounce >= params.mode.z) {
@@ -131,8 +160,9 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       vec3 wi = frameToWorld(frame, bs.wi);
       vec3 origin = offsetRayOrigin(s.position, s.normal, wi);
       nextThroughput = nextThroughput / survival;
+      float rayPdf = isDelta ? 0.0f : bs.pdf;
       r.next.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
-      r.next.direction = make_vec4(wi.x, wi.y, wi.z, bs.pdf);
+      r.next.direction = make_vec4(wi.x, wi.y, wi.z, rayPdf);
       r.next.throughput = make_vec4(nextThroughput.x, nextThroughput.y, nextThroughput.z, 0.0f);
       r.next.state = make_uvec4(rng, bounce + 1u, 0u, 0u);
       r.flags |= WP_SHADE_EXTEND;

@@ -88,9 +88,18 @@ WP_STRUCT(GpuPlane)
   uvec4 info;           // x: material index
 WP_STRUCT_END(GpuPlane)
 
+// GpuMaterial.info.x: which BSDF the material has.
+#define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
+#define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
+
+// A surface material, 80 bytes.
 WP_STRUCT(GpuMaterial)
-  vec4 baseColor;  // rgb: linear albedo, a: alpha
-  vec4 emission;   // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
+  vec4 baseColor;    // rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
+  vec4 emission;     // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
+  vec4 surface;      // x: metallic, y: perceptual roughness, z: ior, w: transmission
+  vec4 attenuation;  // rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
+                     // (WP_FLT_MAX: no absorption)
+  uvec4 info;        // x: WP_MATERIAL_*, yzw: unused
 WP_STRUCT_END(GpuMaterial)
 
 // Emissive triangle in world space, with its alias-table entry for power-proportional
@@ -116,6 +125,7 @@ WP_STRUCT(RenderParams)
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
                         // w: number of lights
   uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
+  uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off), zw: unused
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

@@ -65,8 +65,11 @@ GpuPlane loadPlane(uint i) {
 
 GpuMaterial loadMaterial(uint i) {
   GpuMaterial m;
-  m.baseColor = WP_FLOATS(materialTexels, i, 2u, 0u);
-  m.emission = WP_FLOATS(materialTexels, i, 2u, 1u);
+  m.baseColor = WP_FLOATS(materialTexels, i, 5u, 0u);
+  m.emission = WP_FLOATS(materialTexels, i, 5u, 1u);
+  m.surface = WP_FLOATS(materialTexels, i, 5u, 2u);
+  m.attenuation = WP_FLOATS(materialTexels, i, 5u, 3u);
+  m.info = WP_UINTS(materialTexels, i, 5u, 4u);
   return m;
 }
 

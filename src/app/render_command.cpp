@@ -76,6 +76,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "Light sampling: mis (light and BSDF sampling, balance heuristic), nee (light sampling only), "
                   "bsdf (BSDF sampling only)")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  // Shading switches (materials), off by default.
+  cmd->add_flag("--widen-roughness", s.widenRoughness,
+                "Sample rough glass from Walter et al.'s widened Beckmann lobe (pdfs follow: still unbiased)");
+  cmd->add_option("--clamp", s.contributionClamp,
+                  "Biased: clamp the luminance of each contribution but emission seen by the camera (0 = off)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--rr-start", s.russianRouletteStart, "First bounce at which Russian roulette may end a path");
   cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds)")
       ->check(CLI::Range(64u, 4194240u));

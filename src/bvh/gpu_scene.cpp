@@ -299,8 +299,11 @@ GpuScene packScene(const Scene& scene) {
   buildLightTable(out.lights, power);
 
   for (const Material& material : scene.materials) {
-    out.materials.push_back({glm::vec4(material.baseColor, material.alpha),
-                             glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f)});
+    out.materials.push_back(
+        {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),
+         glm::vec4(material.metallic, material.roughness, material.ior, material.transmission),
+         glm::vec4(material.attenuationColor, material.attenuationDistance),
+         glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF, 0u, 0u, 0u)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

@@ -22,6 +22,14 @@ struct RenderSettings {
   // Paths in flight per sample pass: bounds GPU memory (about 200 bytes a path) whatever
   // the image size.
   uint32_t maxPaths = 1u << 20;
+
+  // Shading switches, all off by default (the default render is unbiased).
+  // Sample glass's Beckmann normals from Walter et al.'s widened lobe (bsdf_models.h:
+  // WP_BSDF_WIDEN_BECKMANN): the pdfs follow, so only the variance changes.
+  bool widenRoughness = false;
+  // Biased: scale each contribution but emission seen by the camera down to at most this
+  // luminance (0 = off), trading energy for fewer fireflies.
+  float contributionClamp = 0.0f;
 };
 
 }  // namespace wp

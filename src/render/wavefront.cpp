@@ -8,6 +8,7 @@
 
 #include "bvh/gpu_scene.h"
 #include "scene/scene.h"
+#include "shaders/common/bsdf_models.h"
 
 namespace wp {
 
@@ -34,6 +35,8 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
   p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, uint32_t(gpuScene.instances.size()),
                         maxPaths);
+  p.shading = glm::uvec4(settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u,
+                         glm::floatBitsToUint(settings.contributionClamp), 0u, 0u);
   return p;
 }
 

@@ -8,9 +8,11 @@
 
 namespace wp::gltf {
 
-// One wp::Material per glTF material, at the same index: baseColorFactor gives baseColor and
-// alpha, emissiveFactor times KHR_materials_emissive_strength gives emission. Throws on
-// non-finite factors or a negative strength; warns once when textures are ignored.
+// One wp::Material per glTF material, at the same index: the pbrMetallicRoughness factors,
+// KHR_materials_ior, _transmission, _volume (attenuation) and emissiveFactor times
+// KHR_materials_emissive_strength; extras.wavepath.bsdf = "lambert" for ideal diffuse.
+// Throws on non-finite factors or extension values out of range; warns once when textures
+// are ignored.
 std::vector<Material> convertMaterials(const Context& ctx);
 
 // The glTF default material, for primitives and shapes that name none: white, one-sided.

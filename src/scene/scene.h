@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -9,10 +10,20 @@
 
 namespace wp {
 
+// A glTF metallic-roughness material (defaults as in glTF), or an ideal diffuse one.
 struct Material {
+  enum class Bsdf { Gltf, Lambert };
+
   std::string name;
-  glm::vec3 baseColor{1.0f};  // linear RGB albedo
+  Bsdf bsdf = Bsdf::Gltf;     // Lambert: extras.wavepath.bsdf = "lambert", albedo baseColor
+  glm::vec3 baseColor{1.0f};  // linear RGB base colour
   float alpha = 1.0f;
+  float metallic = 1.0f;
+  float roughness = 1.0f;     // perceptual; alpha = roughness^2
+  float ior = 1.5f;           // KHR_materials_ior
+  float transmission = 0.0f;  // KHR_materials_transmission
+  glm::vec3 attenuationColor{1.0f};                             // KHR_materials_volume
+  float attenuationDistance = std::numeric_limits<float>::max();  // max: no absorption
   glm::vec3 emission{0.0f};  // emitted radiance: emissiveFactor * emissive_strength
   bool doubleSided = false;  // glTF doubleSided; a single-sided emitter emits on its front only
 

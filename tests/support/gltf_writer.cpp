@@ -66,11 +66,29 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
     float strength = std::max({mat.emission.x, mat.emission.y, mat.emission.z});
     glm::vec3 factor = strength > 0.0f ? mat.emission / strength : glm::vec3(0.0f);
     materials << (i ? "," : "") << "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[" << mat.baseColor.x << ","
-              << mat.baseColor.y << "," << mat.baseColor.z << ",1],\"metallicFactor\":0},\"emissiveFactor\":["
-              << factor.x << "," << factor.y << "," << factor.z << "],\"doubleSided\":"
-              << (mat.doubleSided ? "true" : "false");
+              << mat.baseColor.y << "," << mat.baseColor.z << ",1],\"metallicFactor\":" << mat.metallic
+              << ",\"roughnessFactor\":" << mat.roughness << "},\"emissiveFactor\":[" << factor.x << "," << factor.y
+              << "," << factor.z << "],\"doubleSided\":" << (mat.doubleSided ? "true" : "false");
+    if (mat.lambert) {
+      materials << ",\"extras\":{\"wavepath\":{\"bsdf\":\"lambert\"}}";
+    }
+    std::ostringstream extensions;
     if (strength > 0.0f) {
-      materials << ",\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":" << strength << "}}";
+      extensions << ",\"KHR_materials_emissive_strength\":{\"emissiveStrength\":" << strength << "}";
+    }
+    if (mat.ior != 1.5f) {
+      extensions << ",\"KHR_materials_ior\":{\"ior\":" << mat.ior << "}";
+    }
+    if (mat.transmission > 0.0f) {
+      extensions << ",\"KHR_materials_transmission\":{\"transmissionFactor\":" << mat.transmission << "}";
+    }
+    if (mat.attenuationDistance > 0.0f) {
+      extensions << ",\"KHR_materials_volume\":{\"attenuationDistance\":" << mat.attenuationDistance
+                 << ",\"attenuationColor\":[" << mat.attenuationColor.x << "," << mat.attenuationColor.y << ","
+                 << mat.attenuationColor.z << "]}";
+    }
+    if (!extensions.str().empty()) {
+      materials << ",\"extensions\":{" << extensions.str().substr(1) << "}";
     }
     materials << "}";
   }
@@ -78,7 +96,8 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
   size_t cameraNode = scene.meshes.size();
   std::ostringstream json;
   json.precision(9);
-  json << "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],"
+  json << "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_materials_emissive_strength\","
+       << "\"KHR_materials_ior\",\"KHR_materials_transmission\",\"KHR_materials_volume\"],"
        << "\"scene\":0,\"scenes\":[{\"nodes\":[";
   for (size_t i = 0; i <= cameraNode; ++i) {
     json << (i ? "," : "") << i;
