@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -369,6 +370,63 @@ TEST_F(SceneTest, ConvertsMaterialsWithEmissiveStrength) {
   expectNear(lamp.baseColor, {1, 1, 1});
   EXPECT_FALSE(lamp.doubleSided);
   expectNear(scene.skyRadiance, {0, 0, 0});
+}
+
+TEST_F(SceneTest, ConvertsMetallicRoughnessIorTransmissionVolumeAndLambert) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "extensionsUsed":["KHR_materials_ior","KHR_materials_transmission","KHR_materials_volume"],
+    "extensionsRequired":["KHR_materials_transmission"],
+    "materials":[{"name":"default"},
+                 {"name":"glass","pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.25},
+                  "extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_transmission":{"transmissionFactor":0.9},
+                                "KHR_materials_volume":{"attenuationColor":[0.5,0.75,1],"attenuationDistance":2}}},
+                 {"name":"clay","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":2},
+                  "extras":{"wavepath":{"bsdf":"lambert"}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1},
+                             {"attributes":{"POSITION":0},"material":2}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.materials.size(), 3u);
+  const wp::Material& fallback = scene.materials[0];  // glTF's defaults: a rough metal
+  EXPECT_EQ(fallback.bsdf, wp::Material::Bsdf::Gltf);
+  EXPECT_FLOAT_EQ(fallback.metallic, 1.0f);
+  EXPECT_FLOAT_EQ(fallback.roughness, 1.0f);
+  EXPECT_FLOAT_EQ(fallback.ior, 1.5f);
+  EXPECT_FLOAT_EQ(fallback.transmission, 0.0f);
+  EXPECT_EQ(fallback.attenuationDistance, std::numeric_limits<float>::max());
+  const wp::Material& glass = scene.materials[1];
+  EXPECT_FLOAT_EQ(glass.metallic, 0.0f);
+  EXPECT_FLOAT_EQ(glass.roughness, 0.25f);
+  EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+  EXPECT_FLOAT_EQ(glass.transmission, 0.9f);
+  expectNear(glass.attenuationColor, {0.5f, 0.75f, 1.0f});
+  EXPECT_FLOAT_EQ(glass.attenuationDistance, 2.0f);
+  EXPECT_EQ(scene.materials[2].bsdf, wp::Material::Bsdf::Lambert);
+  EXPECT_FLOAT_EQ(scene.materials[2].metallic, 1.0f);  // clamped to glTF's [0, 1]
+}
+
+TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
+  GltfFile file = triangleFile();
+  auto errorOf = [&](const std::string& material) {
+    return errorOfJson(file.json(R"("materials":[)" + material + R"(],
+      "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+      "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  };
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_ior":{"ior":0.5}}})")
+                .find("material 0: KHR_materials_ior.ior must be a number in [1, 10]; fix the material"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_transmission":{"transmissionFactor":"all"}}})")
+                .find("KHR_materials_transmission.transmissionFactor must be a number in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_volume":{"attenuationDistance":0}}})")
+                .find("KHR_materials_volume.attenuationDistance must be a number > 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_volume":{"attenuationColor":[1,2,1]}}})")
+                .find("KHR_materials_volume.attenuationColor must be 3 numbers in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"bsdf":"phong"}}})")
+                .find(R"(a material's extras.wavepath must be {"bsdf": "lambert"})"),
+            std::string::npos);
 }
 
 TEST_F(SceneTest, AppendsTheDefaultMaterialOnceForPrimitivesWithout) {
