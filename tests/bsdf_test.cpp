@@ -114,6 +114,9 @@ std::vector<SamplerCase> samplerCases() {
     }
   for (float c : kCosines) cases.push_back({caseName("GlassWidened", 0.5f, c), glass(0.5f), c, WP_BSDF_WIDEN_BECKMANN});
   cases.push_back({caseName("GlassWidened", 0.5f, -0.5f), glass(0.5f), -0.5f, WP_BSDF_WIDEN_BECKMANN});
+  for (float c : kCosines) {
+    cases.push_back({caseName("PlasticFixedLobeChoice", 0.5f, c), plastic(0.5f), c, WP_BSDF_FIXED_LOBE_CHOICE});
+  }
   for (float c : kCosines) cases.push_back({caseName("Mixed", 0.5f, c), mixed(0.5f), c, 0u});
   cases.push_back({caseName("Mixed", 0.5f, -0.5f), mixed(0.5f), -0.5f, 0u});
   for (size_t i = 0; i < cases.size(); ++i) cases[i].seed = 1000 + i;
@@ -316,6 +319,7 @@ const EnergyCase kEnergyCases[] = {
     {"glass", [](float r) { return glass(r); }, 1.0f, 0u},
     {"glass inside", [](float r) { return glass(r); }, -1.0f, 0u},
     {"glass widened", [](float r) { return glass(r); }, 1.0f, WP_BSDF_WIDEN_BECKMANN},
+    {"plastic 50/50", [](float r) { return plastic(r, glm::vec3(1.0f)); }, 1.0f, WP_BSDF_FIXED_LOBE_CHOICE},
     {"mixed", [](float r) { return mixed(r, glm::vec3(1.0f)); }, 1.0f, 0u},
 };
 
@@ -614,7 +618,7 @@ TEST(Delta, SmoothPlasticMixesAMirrorAndDiffuse) {
   gpu::SurfaceMaterial m = plastic(0.0f, albedo);
   glm::vec3 wo = outgoing(0.3f);
   float f0 = gpu::f0FromIor(m.ior);
-  float p = gpu::plasticSpecularProbability(albedo, f0, 0.3f);
+  float p = gpu::plasticSpecularProbability(albedo, f0, 0.3f, 0u);
   TestRandom random(500);
   int mirrors = 0;
   constexpr int kCount = 20000;
@@ -640,7 +644,7 @@ TEST(Delta, MixedMaterialScalesDeltaProbabilities) {
   gpu::SurfaceMaterial m = mixed(0.0f, base);  // metal 1/2, glass 1/4, plastic 1/4
   glm::vec3 wo = outgoing(0.6f);
   float fGlass = gpu::fresnelDielectric(0.6f, m.ior);
-  float pPlastic = gpu::plasticSpecularProbability(base, gpu::f0FromIor(m.ior), 0.6f);
+  float pPlastic = gpu::plasticSpecularProbability(base, gpu::f0FromIor(m.ior), 0.6f, 0u);
   // u.x < 1/2: metal; then glass reflects, glass refracts, plastic's mirror.
   gpu::MaterialSample s = gpu::sampleMaterial(m, wo, glm::vec3(0.2f, 0.5f, 0.5f), 0u);
   EXPECT_EQ(s.pdf, 0.5f);

@@ -79,6 +79,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   // Shading switches (materials), off by default.
   cmd->add_flag("--widen-roughness", s.widenRoughness,
                 "Sample rough glass from Walter et al.'s widened Beckmann lobe (pdfs follow: still unbiased)");
+  cmd->add_flag("--fixed-lobe-choice", s.fixedLobeChoice,
+                "For comparisons: plastic picks specular or diffuse 50/50 instead of by Fresnel (still unbiased)");
   cmd->add_option("--clamp", s.contributionClamp,
                   "Biased: clamp the luminance of each contribution but emission seen by the camera (0 = off)")
       ->check(CLI::NonNegativeNumber);

@@ -27,6 +27,9 @@ struct RenderSettings {
   // Sample glass's Beckmann normals from Walter et al.'s widened lobe (bsdf_models.h:
   // WP_BSDF_WIDEN_BECKMANN): the pdfs follow, so only the variance changes.
   bool widenRoughness = false;
+  // For figures only: plastic picks its lobes 50/50 instead of by Fresnel (unbiased too;
+  // bsdf_models.h: WP_BSDF_FIXED_LOBE_CHOICE).
+  bool fixedLobeChoice = false;
   // Biased: scale each contribution but emission seen by the camera down to at most this
   // luminance (0 = off), trading energy for fewer fireflies.
   float contributionClamp = 0.0f;

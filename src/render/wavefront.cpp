@@ -35,8 +35,9 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
   p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, uint32_t(gpuScene.instances.size()),
                         maxPaths);
-  p.shading = glm::uvec4(settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u,
-                         glm::floatBitsToUint(settings.contributionClamp), 0u, 0u);
+  uint32_t bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
+                       (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
+  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), 0u, 0u);
   return p;
 }
 
