@@ -82,6 +82,27 @@ TEST_P(CornellBox, MisNeeAndBsdfSamplingAgreeInMeanRadiance) {
   }
 }
 
+// Light selection by solid angle changes only the variance: with it, MIS and NEE-only agree
+// with NEE-only under the default selection by power (same statistic as above).
+TEST_P(CornellBox, SolidAngleLightSelectionAgreesWithSelectionByPower) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  std::vector<std::vector<std::string>> runs = {{"--mode", "nee"},
+                                                {"--mode", "nee", "--light-selection", "solid-angle"},
+                                                {"--mode", "mis", "--light-selection", "solid-angle"}};
+  std::vector<ImageMean> means;
+  for (std::vector<std::string> flags : runs) {
+    flags.insert(flags.end(), {"--width", "48", "--height", "48", "--spp", "128", "--max-depth", "8"});
+    means.push_back(imageMean(render(scene, flags)));
+  }
+  for (size_t a = 1; a < means.size(); ++a) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LT(meanZ(means[0], means[a], c), 4.0)
+          << "run " << a << ", channel " << c << ": " << means[0].mean[c] << " vs " << means[a].mean[c];
+      EXPECT_LT(differenceError(means[0], means[a], c), 0.02 * means[0].mean[c]);
+    }
+  }
+}
+
 TEST_P(Determinism, SameSeedGivesTheSameImageAndAnotherSeedDoesNot) {
   std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
   auto flags = [](const std::string& seed) {

@@ -78,6 +78,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   uint mode = params.mode.y;
   uint lightCount = params.mode.w;
   uint bsdfFlags = params.shading.x;
+  uint lightSelection = params.shading.z;
 
   SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t);
   GpuMaterial m = WP_MATERIAL(s.material);
@@ -94,7 +95,11 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       if (mode == WP_MODE_NEE) {
         weight = 0.0f;
       } else if (mode == WP_MODE_MIS) {
-        weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(WP_LIGHT(s.light), t * t, dot(s.normal, wo)));
+        // The selection probability as seen from the previous vertex (the ray's origin).
+        GpuLight light = WP_LIGHT(s.light);
+        float selection = lightSelectionProbability(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, light,
+                                                    xyz(ray.origin));
+        weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
       }
     }
     r.radiance = throughput * emission * weight;
@@ -116,7 +121,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
     float u1 = rngFloat(rng);
     rng = rngNext(rng);
     float u2 = rngFloat(rng);
-    LightSample ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, s.position, make_vec3(u0, u1, u2));
+    LightSample ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, s.position, make_vec3(u0, u1, u2));
     BsdfEval e = noEval();
     if (ls.pdf > 0.0f) {
       e = evalBsdf(m, woLocal, frameToLocal(frame, ls.direction), bsdfFlags);

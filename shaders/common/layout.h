@@ -37,6 +37,10 @@ WP_BEGIN
 #define WP_MODE_NEE 1u
 #define WP_MODE_BSDF 2u
 
+// Light selection for next event estimation (RenderParams.shading.z).
+#define WP_LIGHT_SELECTION_POWER 0u        // alias table by emitted power
+#define WP_LIGHT_SELECTION_SOLID_ANGLE 1u  // by subtended solid angle times luminance (lights.h)
+
 // GpuInstance.info.x: what the instance is.
 #define WP_INSTANCE_MESH 0u
 #define WP_INSTANCE_SPHERE 1u  // unit sphere at the object-space origin
@@ -125,7 +129,8 @@ WP_STRUCT(RenderParams)
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
                         // w: number of lights
   uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
-  uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off), zw: unused
+  uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
+                        // z: WP_LIGHT_SELECTION_*, w: unused
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

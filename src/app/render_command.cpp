@@ -84,6 +84,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--clamp", s.contributionClamp,
                   "Biased: clamp the luminance of each contribution but emission seen by the camera (0 = off)")
       ->check(CLI::NonNegativeNumber);
+  static const std::map<std::string, LightSelection> selections = {{"power", LightSelection::Power},
+                                                                   {"solid-angle", LightSelection::SolidAngle}};
+  cmd->add_option("--light-selection", s.lightSelection,
+                  "How light sampling picks a light: power (alias table, the default) or solid-angle (subtended "
+                  "solid angle times luminance from the shading point; a pass over all lights per sample)")
+      ->transform(CLI::CheckedTransformer(selections, CLI::ignore_case));
   cmd->add_option("--rr-start", s.russianRouletteStart, "First bounce at which Russian roulette may end a path");
   cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds)")
       ->check(CLI::Range(64u, 4194240u));

@@ -37,7 +37,9 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
                         maxPaths);
   uint32_t bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
                        (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
-  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), 0u, 0u);
+  uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
+                                                                                  : WP_LIGHT_SELECTION_POWER;
+  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection, 0u);
   return p;
 }
 
