@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Writes assets/materials.gltf: rows of analytic spheres showing wavepath's materials.
 
-Run by hand (python3 tools/make_material_scene.py [output.gltf]); the output is committed.
-Python 3 standard library only.
+Run by hand (python3 tools/make_material_scene.py [--plastics] [output.gltf]); the output is
+committed. --plastics writes the variant of the README's Fresnel-blending figure instead:
+every row plastic (red, white, blue) at increasing roughness. Python 3 standard library only.
 
 Back row: gold, roughness increasing to the right; middle row: copper, the same; front row:
 red and blue plastic, white ceramic (smooth white plastic), clear glass, rough glass and
@@ -47,6 +48,12 @@ def glass(name, roughness, attenuation=None):
     return pbr(name, [1.0, 1.0, 1.0], 0.0, roughness, extensions)
 
 
+def plastic_rows():
+    """Rows of plastics at increasing roughness, back row first."""
+    colours = {"red": [0.8, 0.05, 0.05], "white": [0.8, 0.8, 0.8], "blue": [0.05, 0.15, 0.7]}
+    return [[pbr(f"{name}-{r}", colour, 0.0, r) for r in ROUGHNESS] for name, colour in colours.items()]
+
+
 def sphere_materials():
     """Rows of (name, material), back row first."""
     gold = [pbr(f"gold-{r}", GOLD, 1.0, r) for r in ROUGHNESS]
@@ -80,8 +87,7 @@ def light_mesh():
     return blob, positions, indices
 
 
-def build():
-    rows = sphere_materials()
+def build(rows):
     materials = [lambert("floor", [0.5, 0.5, 0.5]),
                  {"name": "light", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1],
                   "metallicFactor": 0.0, "roughnessFactor": 1.0}, "emissiveFactor": [1.0, 1.0, 1.0],
@@ -124,9 +130,12 @@ def build():
 
 def main():
     repo = Path(__file__).resolve().parent.parent
-    out = Path(sys.argv[1]) if len(sys.argv) > 1 else repo / "assets" / "materials.gltf"
+    args = sys.argv[1:]
+    plastics = "--plastics" in args
+    paths = [a for a in args if a != "--plastics"]
+    out = Path(paths[0]) if paths else repo / "assets" / "materials.gltf"
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(build(), indent=1) + "\n")
+    out.write_text(json.dumps(build(plastic_rows() if plastics else sphere_materials()), indent=1) + "\n")
     print(f"wrote {out}")
 
 
