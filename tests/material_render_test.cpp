@@ -21,6 +21,8 @@ struct MaterialCase {
   // Samples per pixel: NEE alone finds light through rough glass only from inside it, so
   // the glass cases need more samples to get the noise well below the signal.
   int spp = 96;
+  // A coarse sphere with vertex normals (smooth shading) instead of a finer flat one.
+  bool smoothShaded = false;
 };
 
 void PrintTo(const MaterialCase& c, std::ostream* os) { *os << c.name; }
@@ -52,6 +54,8 @@ const MaterialCase kCases[] = {
     {"HalfMetal", gltfMaterial({0.9f, 0.6f, 0.3f}, 0.5f, 0.5f)},
     {"RoughGlass", gltfMaterial({1.0f, 1.0f, 1.0f}, 0.0f, 0.5f, 1.0f), 448},
     {"AbsorbingSmoothGlass", absorbingGlass(), 256},
+    {"SmoothShadedPlastic", gltfMaterial({0.8f, 0.1f, 0.1f}, 0.0f, 0.3f), 96, true},
+    {"SmoothShadedGlass", gltfMaterial({1.0f, 1.0f, 1.0f}, 0.0f, 0.5f, 1.0f), 448, true},
 };
 
 // A sphere of the material on a grey Lambertian floor, lit by a large one-sided area light
@@ -73,7 +77,10 @@ std::filesystem::path writeScene(const MaterialCase& c) {
   lamp.positions = {{-0.8f, 2.0f, -0.8f}, {0.8f, 2.0f, -0.8f}, {0.8f, 2.0f, 0.8f}, {-0.8f, 2.0f, 0.8f}};
   lamp.indices = {0, 1, 2, 0, 2, 3};
   lamp.material = 1;
-  TestMesh ball = icosphere(0.5f, 3);
+  TestMesh ball = icosphere(0.5f, c.smoothShaded ? 1 : 3);
+  if (c.smoothShaded) {
+    for (const glm::vec3& p : ball.positions) ball.normals.push_back(glm::normalize(p));
+  }
   ball.translation = glm::vec3(0.0f, 0.5f, 0.0f);
   ball.material = 2;
   scene.meshes = {ground, lamp, ball};

@@ -429,6 +429,31 @@ TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
             std::string::npos);
 }
 
+// --- vertex normals ---
+
+// A primitive without NORMAL before one with: the mesh gets normals, zero (flat) for the
+// first primitive's vertices, and unit length for the second's however they were stored.
+TEST_F(SceneTest, ReadsVertexNormalsAndZeroFillsPrimitivesWithout) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});            // accessor 0
+  file.positions({{0, 0, 1}, {1, 0, 1}, {0, 1, 1}});            // accessor 1
+  file.positions({{0, 0, 2}, {0.6f, 0, 0.8f}, {0, 0, 0}});      // accessor 2: NORMAL of 1
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}},{"attributes":{"POSITION":1,"NORMAL":2}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const wp::Mesh& mesh = scene.meshes[0];
+  ASSERT_EQ(mesh.normals.size(), 6u);
+  for (int i = 0; i < 3; ++i) expectNear(mesh.normals[i], {0, 0, 0});
+  expectNear(mesh.normals[3], {0, 0, 1});
+  expectNear(mesh.normals[4], {0.6f, 0, 0.8f});
+  expectNear(mesh.normals[5], {0, 0, 0});  // zero stays zero: that vertex shades flat
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":3}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("NORMAL"), std::string::npos) << message;
+}
+
 TEST_F(SceneTest, AppendsTheDefaultMaterialOnceForPrimitivesWithout) {
   GltfFile file = triangleFile();
   const Scene scene = load(file.json(R"(

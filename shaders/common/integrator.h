@@ -46,6 +46,13 @@ WP_FN ShadeResult shadeMiss(RenderParams params, PathRay ray) {
   return r;
 }
 
+// True when wi is on the same side of the geometric surface as wo (product of the two
+// geometric cosines > 0) exactly when it is on the same side of the shading frame
+// (product of the local cosines > 0): reflection stays reflection.
+WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) {
+  return (woGeometric * wiGeometric > 0.0f) == (localProduct > 0.0f);
+}
+
 // The biased contribution clamp (RenderParams.shading.y, 0 = off) on what a path adds
 // after its first vertex; light seen directly by the camera is never clamped.
 WP_FN vec3 clampedContribution(RenderParams params, vec3 c) {
@@ -111,7 +118,14 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
     return r;
   }
 
-  Frame frame = makeFrame(s.normal);
+  // Smooth shading: the BSDF sees the interpolated normal, but whether a direction is
+  // reflected or transmitted is decided by the geometric normal, so no light leaks through
+  // the surface (a direction whose two verdicts differ contributes nothing, to every
+  // strategy alike). Where wo itself is on different sides of the two, the vertex normals
+  // are unusable there and the point shades flat.
+  float woSide = dot(s.normal, wo);
+  vec3 shadingNormal = woSide * dot(s.shadingNormal, wo) > 0.0f ? s.shadingNormal : s.normal;
+  Frame frame = makeFrame(shadingNormal);
   vec3 woLocal = frameToLocal(frame, wo);
 
   if (mode != WP_MODE_BSDF && lightCount > 0u) {
@@ -124,7 +138,10 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
     LightSample ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, s.position, make_vec3(u0, u1, u2));
     BsdfEval e = noEval();
     if (ls.pdf > 0.0f) {
-      e = evalBsdf(m, woLocal, frameToLocal(frame, ls.direction), bsdfFlags);
+      vec3 wiLocal = frameToLocal(frame, ls.direction);
+      if (sidesAgree(woSide, dot(s.normal, ls.direction), woLocal.z * wiLocal.z)) {
+        e = evalBsdf(m, woLocal, wiLocal, bsdfFlags);
+      }
     }
     vec3 unshadowed = e.fCos * ls.radiance;
     if (maxComponent(unshadowed) > 0.0f) {
@@ -161,8 +178,9 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
         survival = 0.0f;
       }
     }
-    if (bs.pdf > 0.0f && survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
-      vec3 wi = frameToWorld(frame, bs.wi);
+    vec3 wi = frameToWorld(frame, bs.wi);
+    bool agrees = sidesAgree(woSide, dot(s.normal, wi), woLocal.z * bs.wi.z);
+    if (bs.pdf > 0.0f && agrees && survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
       vec3 origin = offsetRayOrigin(s.position, s.normal, wi);
       nextThroughput = nextThroughput / survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;

@@ -27,10 +27,11 @@ WP_BEGIN
 #define WP_BINDING_PATH_RADIANCE 10 // vec4[maxPaths]: radiance of each path this pass
 #define WP_BINDING_COUNTERS 11      // QueueCounters
 #define WP_BINDING_ACCUM 12         // vec4[2 * pixels]: sum of radiance, sum of squares
-#define WP_BINDING_RAYS_READ 13     // the rays buffer again, as texels
-#define WP_BINDING_HITS_READ 14     // the hits buffer again, as texels
-#define WP_BINDING_SHADOW_RAYS_READ 15  // the shadow-ray buffer again, as texels
-#define WP_BINDING_COUNT 16u
+#define WP_BINDING_TRIANGLE_SHADING 13  // GpuTriangleShading[] (texels), parallel to the triangles
+#define WP_BINDING_RAYS_READ 14     // the rays buffer again, as texels
+#define WP_BINDING_HITS_READ 15     // the hits buffer again, as texels
+#define WP_BINDING_SHADOW_RAYS_READ 16  // the shadow-ray buffer again, as texels
+#define WP_BINDING_COUNT 17u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
@@ -56,6 +57,7 @@ WP_BEGIN
 #define WP_PLANE(i) planes[i]
 #define WP_MATERIAL(i) materials[i]
 #define WP_LIGHT(i) lights[i]
+#define WP_TRIANGLE_SHADING(i) triangleShading[i]
 #endif
 
 // BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
@@ -76,6 +78,14 @@ WP_STRUCT(GpuTriangle)
   vec4 edge2;  // xyz: v2 - v0
   uvec4 info;  // x: material index, y: emitter ordinal within its mesh or WP_INVALID
 WP_STRUCT_END(GpuTriangle)
+
+// Shading data of the GpuTriangle at the same index, read only when shading a hit, so the
+// traversal's triangle records stay 64 bytes: 48 bytes.
+WP_STRUCT(GpuTriangleShading)
+  vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0;
+  vec4 normal1;  // all three zero: shade with the geometric normal (flat)
+  vec4 normal2;
+WP_STRUCT_END(GpuTriangleShading)
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
 WP_STRUCT(GpuInstance)

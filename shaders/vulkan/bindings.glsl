@@ -14,6 +14,7 @@ layout(binding = WP_BINDING_INSTANCES) uniform usamplerBuffer instanceTexels;
 layout(binding = WP_BINDING_PLANES) uniform usamplerBuffer planeTexels;
 layout(binding = WP_BINDING_MATERIALS) uniform usamplerBuffer materialTexels;
 layout(binding = WP_BINDING_LIGHTS) uniform usamplerBuffer lightTexels;
+layout(binding = WP_BINDING_TRIANGLE_SHADING) uniform usamplerBuffer triangleShadingTexels;
 layout(binding = WP_BINDING_RAYS_READ) uniform usamplerBuffer rayTexels;
 layout(binding = WP_BINDING_HITS_READ) uniform usamplerBuffer hitTexels;
 layout(binding = WP_BINDING_SHADOW_RAYS_READ) uniform usamplerBuffer shadowRayTexels;
@@ -63,6 +64,14 @@ GpuPlane loadPlane(uint i) {
   return p;
 }
 
+GpuTriangleShading loadTriangleShading(uint i) {
+  GpuTriangleShading t;
+  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 3u, 0u);
+  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 3u, 1u);
+  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 3u, 2u);
+  return t;
+}
+
 GpuMaterial loadMaterial(uint i) {
   GpuMaterial m;
   m.baseColor = WP_FLOATS(materialTexels, i, 5u, 0u);
@@ -106,6 +115,7 @@ ShadowRay loadShadowRay(uint i) {
 #define WP_PLANE(i) loadPlane(i)
 #define WP_MATERIAL(i) loadMaterial(i)
 #define WP_LIGHT(i) loadLight(i)
+#define WP_TRIANGLE_SHADING(i) loadTriangleShading(i)
 
 uint bounceParity() { return pc.pass.w & 1u; }
 

@@ -193,6 +193,13 @@ PackedMesh packMesh(const Scene& scene, const Mesh& mesh, GpuScene& out, double&
     Triangle v = triangleOf(mesh, t);
     out.triangles.push_back({glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
                              glm::uvec4(mesh.materials[t], ordinal[t], 0u, 0u)});
+    gpu::GpuTriangleShading shading{};
+    if (!mesh.normals.empty()) {
+      const uint32_t* corner = &mesh.indices[3 * t];
+      shading = {glm::vec4(mesh.normals[corner[0]], 0.0f), glm::vec4(mesh.normals[corner[1]], 0.0f),
+                 glm::vec4(mesh.normals[corner[2]], 0.0f)};
+    }
+    out.triangleShading.push_back(shading);
   }
   return packed;
 }

@@ -26,6 +26,7 @@ struct GpuScene {
   std::vector<gpu::BvhNode> nodes;
   // Object-space triangles of every mesh in mesh order, each mesh's in its BVH leaf order.
   std::vector<gpu::GpuTriangle> triangles;
+  std::vector<gpu::GpuTriangleShading> triangleShading;  // parallel to `triangles`
   // Mesh instances and spheres in top-level leaf order. Instances of meshes without
   // triangles and instances with a singular transform are left out.
   std::vector<gpu::GpuInstance> instances;

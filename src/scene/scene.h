@@ -34,6 +34,9 @@ struct Material {
 struct Mesh {
   std::string name;
   std::vector<glm::vec3> positions;
+  // Unit shading normals per vertex (glTF NORMAL), or empty when no primitive has them;
+  // zero for the vertices of primitives without, which then shade flat.
+  std::vector<glm::vec3> normals;
   std::vector<uint32_t> indices;    // 3 per triangle, counter-clockwise = front face
   std::vector<uint32_t> materials;  // one material index per triangle
 

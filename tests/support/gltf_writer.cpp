@@ -39,6 +39,13 @@ size_t append(std::vector<uint8_t>& buffer, const std::vector<T>& data) {
 std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::path& file) {
   std::vector<uint8_t> buffer;
   std::ostringstream views, accessors, meshes, nodes, materials;
+  // Each accessor has its own buffer view, at the same index.
+  size_t next = 0;
+  auto addView = [&](size_t offset, size_t length) {
+    views << (next ? "," : "") << "{\"buffer\":0,\"byteOffset\":" << offset << ",\"byteLength\":" << length << "}";
+    accessors << (next ? "," : "");
+    return next++;
+  };
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const TestMesh& mesh = scene.meshes[m];
     glm::vec3 lo(1e30f), hi(-1e30f);
@@ -46,17 +53,22 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
     }
-    size_t positionOffset = append(buffer, mesh.positions);
-    size_t indexOffset = append(buffer, mesh.indices);
-    const char* sep = m ? "," : "";
-    views << sep << "{\"buffer\":0,\"byteOffset\":" << positionOffset
-          << ",\"byteLength\":" << mesh.positions.size() * 12 << "},{\"buffer\":0,\"byteOffset\":" << indexOffset
-          << ",\"byteLength\":" << mesh.indices.size() * 4 << "}";
-    accessors << sep << "{\"bufferView\":" << 2 * m << ",\"componentType\":5126,\"count\":" << mesh.positions.size()
+    size_t position = addView(append(buffer, mesh.positions), mesh.positions.size() * 12);
+    accessors << "{\"bufferView\":" << position << ",\"componentType\":5126,\"count\":" << mesh.positions.size()
               << ",\"type\":\"VEC3\",\"min\":[" << lo.x << "," << lo.y << "," << lo.z << "],\"max\":[" << hi.x << ","
-              << hi.y << "," << hi.z << "]},{\"bufferView\":" << 2 * m + 1
-              << ",\"componentType\":5125,\"count\":" << mesh.indices.size() << ",\"type\":\"SCALAR\"}";
-    meshes << sep << "{\"primitives\":[{\"attributes\":{\"POSITION\":" << 2 * m << "},\"indices\":" << 2 * m + 1
+              << hi.y << "," << hi.z << "]}";
+    size_t index = addView(append(buffer, mesh.indices), mesh.indices.size() * 4);
+    accessors << "{\"bufferView\":" << index << ",\"componentType\":5125,\"count\":" << mesh.indices.size()
+              << ",\"type\":\"SCALAR\"}";
+    std::string attributes = "\"POSITION\":" + std::to_string(position);
+    if (!mesh.normals.empty()) {
+      size_t normal = addView(append(buffer, mesh.normals), mesh.normals.size() * 12);
+      accessors << "{\"bufferView\":" << normal << ",\"componentType\":5126,\"count\":" << mesh.normals.size()
+                << ",\"type\":\"VEC3\"}";
+      attributes += ",\"NORMAL\":" + std::to_string(normal);
+    }
+    const char* sep = m ? "," : "";
+    meshes << sep << "{\"primitives\":[{\"attributes\":{" << attributes << "},\"indices\":" << index
            << ",\"material\":" << mesh.material << "}]}";
     nodes << sep << "{\"mesh\":" << m << ",\"translation\":[" << mesh.translation.x << "," << mesh.translation.y
           << "," << mesh.translation.z << "]}";

@@ -25,6 +25,7 @@ struct TestMaterial {
 
 struct TestMesh {
   std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // glTF NORMAL, written when not empty
   std::vector<uint32_t> indices;
   int material = 0;
   glm::vec3 translation{0.0f};

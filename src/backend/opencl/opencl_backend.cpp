@@ -88,12 +88,15 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
   sceneBuffers_[3] = uploadVector(context, scene.planes);
   sceneBuffers_[4] = uploadVector(context, scene.materials);
   sceneBuffers_[5] = uploadVector(context, scene.lights);
+  sceneBuffers_[6] = uploadVector(context, scene.triangleShading);
+  const uint32_t bindings[] = {WP_BINDING_NODES,  WP_BINDING_TRIANGLES, WP_BINDING_INSTANCES,        WP_BINDING_PLANES,
+                               WP_BINDING_MATERIALS, WP_BINDING_LIGHTS, WP_BINDING_TRIANGLE_SHADING};
   sceneBytes_ = 0;
   uint64_t largest = 0;
   for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {
     sceneBytes_ += sceneBuffers_[i].size();
     largest = std::max(largest, sceneBuffers_[i].size());
-    bind(WP_BINDING_NODES + i, sceneBuffers_[i]);
+    bind(bindings[i], sceneBuffers_[i]);
   }
   checkMemory(sceneBytes_, largest, "scene");
 }

@@ -47,6 +47,7 @@ VkDescriptorType descriptorType(uint32_t binding) {
     case WP_BINDING_PLANES:
     case WP_BINDING_MATERIALS:
     case WP_BINDING_LIGHTS:
+    case WP_BINDING_TRIANGLE_SHADING:
     case WP_BINDING_RAYS_READ:
     case WP_BINDING_HITS_READ:
     case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -191,6 +192,7 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   uploadVector(*context_, sceneBuffers_[3], scene.planes);
   uploadVector(*context_, sceneBuffers_[4], scene.materials);
   uploadVector(*context_, sceneBuffers_[5], scene.lights);
+  uploadVector(*context_, sceneBuffers_[6], scene.triangleShading);
   if (params_.handle() != VK_NULL_HANDLE) {
     writeDescriptors();
   }
@@ -232,7 +234,7 @@ void VulkanBackend::writeDescriptors() {
   std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers = {
       &params_,      &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3], &sceneBuffers_[4],
       &sceneBuffers_[5], &rays_,        &hits_,            &shadowRays_,      &pathRadiance_,    &counters_,
-      &accumulation_, &rays_,           &hits_,            &shadowRays_};
+      &accumulation_, &sceneBuffers_[6], &rays_,          &hits_,            &shadowRays_};
   for (VkBufferView view : texelViews_) {
     vkDestroyBufferView(context_->device, view, nullptr);
   }
