@@ -16,6 +16,8 @@
 
 #include <glm/glm.hpp>
 
+#include <stb_image_write.h>
+
 #include "core/error.h"
 #include "scene/gltf_loader.h"
 
@@ -452,6 +454,67 @@ TEST_F(SceneTest, ReadsVertexNormalsAndZeroFillsPrimitivesWithout) {
     "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":3}}]}],
     "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
   EXPECT_NE(message.find("NORMAL"), std::string::npos) << message;
+}
+
+// --- textures ---
+
+// A 2x1 PNG: red, then blue with alpha 128.
+std::string twoTexelPng() {
+  const uint8_t rgba[] = {255, 0, 0, 255, 0, 0, 255, 128};
+  std::string png;
+  stbi_write_png_to_func([](void* out, void* data, int size) { static_cast<std::string*>(out)->append(static_cast<char*>(data), size); },
+                         &png, 2, 1, 4, rgba, 8);
+  return png;
+}
+
+const std::string kTexturedMaterial = R"(
+    "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicRoughnessTexture":{"index":0}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],
+    "samplers":[{"magFilter":9728,"wrapS":33071,"wrapT":33648}],
+    "textures":[{"source":0,"sampler":0}],)";
+
+void expectTwoTexelTextures(const Scene& scene) {
+  ASSERT_EQ(scene.textures.size(), 2u);  // one sRGB (base colour), one linear
+  const wp::Texture& base = scene.textures[static_cast<size_t>(scene.materials[0].baseColorTexture)];
+  EXPECT_TRUE(base.srgb);
+  EXPECT_FALSE(scene.textures[static_cast<size_t>(scene.materials[0].metallicRoughnessTexture)].srgb);
+  EXPECT_EQ(base.width, 2u);
+  EXPECT_EQ(base.height, 1u);
+  EXPECT_EQ(base.rgba, (std::vector<uint32_t>{0xff0000ffu, 0x80ff0000u}));
+  EXPECT_TRUE(base.nearest);
+  EXPECT_EQ(base.wrapS, wp::Texture::Wrap::Clamp);
+  EXPECT_EQ(base.wrapT, wp::Texture::Wrap::Mirror);
+  ASSERT_EQ(scene.meshes[0].uvs.size(), 3u);
+  expectNear(glm::vec3(scene.meshes[0].uvs[2], 0.0f), {0.0f, 1.0f, 0.0f});
+}
+
+TEST_F(SceneTest, ReadsTexturesFromDataUrisAndGlbBufferViews) {
+  const std::string png = twoTexelPng();
+  GltfFile file = triangleFile();
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");
+  expectTwoTexelTextures(load(file.json(kTexturedMaterial + R"("images":[{"uri":"data:image/png;base64,)" +
+                                        base64(png) + R"("}])")));
+  const int view = file.view(png);
+  const fs::path glb = write("scene.glb", file.glb(kTexturedMaterial + R"("images":[{"bufferView":)" +
+                                                   std::to_string(view) + R"(,"mimeType":"image/png"}])"));
+  expectTwoTexelTextures(loadScene(glb));
+}
+
+TEST_F(SceneTest, RejectsMissingAndUndecodableImages) {
+  GltfFile file = triangleFile();
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");
+  const std::string missing = errorOfJson(file.json(kTexturedMaterial + R"("images":[{"uri":"nowhere.png"}])"));
+  EXPECT_NE(missing.find("nowhere.png"), std::string::npos) << missing;
+  const std::string garbage =
+      errorOfJson(file.json(kTexturedMaterial + R"("images":[{"uri":"data:image/png;base64,)" +
+                            base64("this is not an image") + R"("}])"));
+  EXPECT_NE(garbage.find("image 0 cannot be decoded"), std::string::npos) << garbage;
+  const std::string index = errorOfJson(file.json(R"(
+    "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":3}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(index.find("material 0: texture 3 does not exist"), std::string::npos) << index;
 }
 
 TEST_F(SceneTest, AppendsTheDefaultMaterialOnceForPrimitivesWithout) {

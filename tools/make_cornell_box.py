@@ -94,6 +94,8 @@ def materials():
             "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
         "emissiveFactor": [c / strength for c in LIGHT_RADIANCE],
         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength}},
+        # Black Lambert: it emits and reflects nothing, as in the reference.
+        "extras": {"wavepath": {"bsdf": "lambert"}},
     })
     return out
 

@@ -10,12 +10,13 @@
 #include "rng.h"
 #include "sampling.h"
 #include "surface.h"
+#include "texture.h"
 
 WP_BEGIN
 
 #ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SHADING_BUFFERS WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER
-#define WP_SHADING_BUFFER_ARGS WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG
+#define WP_SHADING_BUFFERS WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER WP_TEXTURE_BUFFERS
+#define WP_SHADING_BUFFER_ARGS WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG WP_TEXTURE_BUFFER_ARGS
 #else
 #define WP_SHADING_BUFFERS
 #define WP_SHADING_BUFFER_ARGS
@@ -44,6 +45,24 @@ WP_FN ShadeResult shadeMiss(RenderParams params, PathRay ray) {
   r.flags = 0u;
   r.radiance = xyz(ray.throughput) * xyz(params.skyRadiance);
   return r;
+}
+
+// The material at the hit with its textures applied (glTF: base colour times the texture;
+// metallic and roughness times the texture's blue and green). Surfaces without TEXCOORD_0
+// (and spheres and planes) use the constant factors.
+WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+  if (!s.hasUv) {
+    return m;
+  }
+  if (m.info.y != WP_INVALID) {
+    m.baseColor = m.baseColor * sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.y, s.uv);
+  }
+  if (m.info.z != WP_INVALID) {
+    vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.z, s.uv);
+    m.surface.x *= t.z;
+    m.surface.y *= t.y;
+  }
+  return m;
 }
 
 // True when wi is on the same side of the geometric surface as wo (product of the two
@@ -88,7 +107,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   uint lightSelection = params.shading.z;
 
   SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t);
-  GpuMaterial m = WP_MATERIAL(s.material);
+  GpuMaterial m = texturedMaterial(WP_TEXTURE_BUFFER_ARGS WP_MATERIAL(s.material), s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);

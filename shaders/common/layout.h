@@ -28,10 +28,12 @@ WP_BEGIN
 #define WP_BINDING_COUNTERS 11      // QueueCounters
 #define WP_BINDING_ACCUM 12         // vec4[2 * pixels]: sum of radiance, sum of squares
 #define WP_BINDING_TRIANGLE_SHADING 13  // GpuTriangleShading[] (texels), parallel to the triangles
-#define WP_BINDING_RAYS_READ 14     // the rays buffer again, as texels
-#define WP_BINDING_HITS_READ 15     // the hits buffer again, as texels
-#define WP_BINDING_SHADOW_RAYS_READ 16  // the shadow-ray buffer again, as texels
-#define WP_BINDING_COUNT 17u
+#define WP_BINDING_TEXTURES 14      // GpuTexture[] (texels)
+#define WP_BINDING_TEXELS 15        // uint[] (texels): RGBA8 texels of every texture, r in the low byte
+#define WP_BINDING_RAYS_READ 16     // the rays buffer again, as texels
+#define WP_BINDING_HITS_READ 17     // the hits buffer again, as texels
+#define WP_BINDING_SHADOW_RAYS_READ 18  // the shadow-ray buffer again, as texels
+#define WP_BINDING_COUNT 19u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
@@ -58,6 +60,8 @@ WP_BEGIN
 #define WP_MATERIAL(i) materials[i]
 #define WP_LIGHT(i) lights[i]
 #define WP_TRIANGLE_SHADING(i) triangleShading[i]
+#define WP_TEXTURE(i) textures[i]
+#define WP_TEXEL_WORD(i) texels[i]
 #endif
 
 // BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
@@ -80,12 +84,25 @@ WP_STRUCT(GpuTriangle)
 WP_STRUCT_END(GpuTriangle)
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit, so the
-// traversal's triangle records stay 64 bytes: 48 bytes.
+// traversal's triangle records stay 64 bytes: 64 bytes.
 WP_STRUCT(GpuTriangleShading)
-  vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0;
-  vec4 normal1;  // all three zero: shade with the geometric normal (flat)
-  vec4 normal2;
+  vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0, w: u0;
+  vec4 normal1;  // all three normals zero: shade with the geometric normal (flat); w: u1
+  vec4 normal2;  // w: u2
+  vec4 v;        // xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
 WP_STRUCT_END(GpuTriangleShading)
+
+// GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
+#define WP_TEXTURE_WRAP_REPEAT 0u
+#define WP_TEXTURE_WRAP_CLAMP 1u
+#define WP_TEXTURE_WRAP_MIRROR 2u
+#define WP_TEXTURE_SRGB 16u     // texels are sRGB-encoded colour (decoded before filtering)
+#define WP_TEXTURE_NEAREST 32u  // nearest texel instead of bilinear
+
+// A texture's header: 16 bytes.
+WP_STRUCT(GpuTexture)
+  uvec4 info;  // x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
+WP_STRUCT_END(GpuTexture)
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
 WP_STRUCT(GpuInstance)
@@ -113,7 +130,8 @@ WP_STRUCT(GpuMaterial)
   vec4 surface;      // x: metallic, y: perceptual roughness, z: ior, w: transmission
   vec4 attenuation;  // rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
                      // (WP_FLT_MAX: no absorption)
-  uvec4 info;        // x: WP_MATERIAL_*, yzw: unused
+  uvec4 info;        // x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness
+                     // texture (WP_INVALID: none), w: unused
 WP_STRUCT_END(GpuMaterial)
 
 // Emissive triangle in world space, with its alias-table entry for power-proportional

@@ -19,6 +19,8 @@ WP_STRUCT(SurfaceHit)
   vec3 position;
   vec3 normal;         // unit geometric normal, front side (counter-clockwise winding, outside)
   vec3 shadingNormal;  // unit interpolated vertex normal on the front side; `normal` if none
+  vec2 uv;             // TEXCOORD_0 at the hit, if hasUv
+  bool hasUv;
   uint material;
   uint light;     // index into the light buffer, WP_INVALID if not a sampled light
 WP_STRUCT_END(SurfaceHit)
@@ -60,6 +62,8 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   SurfaceHit s;
   s.position = position;
   s.light = WP_INVALID;
+  s.uv = make_vec2(0.0f, 0.0f);
+  s.hasUv = false;
   if ((instanceField & WP_HIT_PLANE) != 0u) {
     GpuPlane plane = WP_PLANE(instanceField & ~WP_HIT_PLANE);
     s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
@@ -85,6 +89,9 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   vec3 n2 = make_vec3(shading.normal2.x, shading.normal2.y, shading.normal2.z);
   vec2 b = barycentricsAt(tri, pointToObject(inst, position));
   vec3 n = n0 * (1.0f - b.x - b.y) + n1 * b.x + n2 * b.y;
+  s.hasUv = shading.v.w != 0.0f;
+  s.uv = make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
+         make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
   if (dot(n, n) > 1e-12f) {
     // Vertex normals on the back of the face (bad data) are taken as facing the front.
     vec3 world = normalToWorld(inst, n);

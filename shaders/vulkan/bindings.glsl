@@ -15,6 +15,8 @@ layout(binding = WP_BINDING_PLANES) uniform usamplerBuffer planeTexels;
 layout(binding = WP_BINDING_MATERIALS) uniform usamplerBuffer materialTexels;
 layout(binding = WP_BINDING_LIGHTS) uniform usamplerBuffer lightTexels;
 layout(binding = WP_BINDING_TRIANGLE_SHADING) uniform usamplerBuffer triangleShadingTexels;
+layout(binding = WP_BINDING_TEXTURES) uniform usamplerBuffer textureTexels;
+layout(binding = WP_BINDING_TEXELS) uniform usamplerBuffer texelTexels;
 layout(binding = WP_BINDING_RAYS_READ) uniform usamplerBuffer rayTexels;
 layout(binding = WP_BINDING_HITS_READ) uniform usamplerBuffer hitTexels;
 layout(binding = WP_BINDING_SHADOW_RAYS_READ) uniform usamplerBuffer shadowRayTexels;
@@ -66,11 +68,21 @@ GpuPlane loadPlane(uint i) {
 
 GpuTriangleShading loadTriangleShading(uint i) {
   GpuTriangleShading t;
-  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 3u, 0u);
-  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 3u, 1u);
-  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 3u, 2u);
+  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 4u, 0u);
+  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 4u, 1u);
+  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 4u, 2u);
+  t.v = WP_FLOATS(triangleShadingTexels, i, 4u, 3u);
   return t;
 }
+
+GpuTexture loadTexture(uint i) {
+  GpuTexture t;
+  t.info = WP_UINTS(textureTexels, i, 1u, 0u);
+  return t;
+}
+
+// Four packed texels per RGBA32UI texel of the buffer.
+uint loadTexelWord(uint i) { return texelFetch(texelTexels, int(i >> 2u))[i & 3u]; }
 
 GpuMaterial loadMaterial(uint i) {
   GpuMaterial m;
@@ -116,6 +128,8 @@ ShadowRay loadShadowRay(uint i) {
 #define WP_MATERIAL(i) loadMaterial(i)
 #define WP_LIGHT(i) loadLight(i)
 #define WP_TRIANGLE_SHADING(i) loadTriangleShading(i)
+#define WP_TEXTURE(i) loadTexture(i)
+#define WP_TEXEL_WORD(i) loadTexelWord(i)
 
 uint bounceParity() { return pc.pass.w & 1u; }
 

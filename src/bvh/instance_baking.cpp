@@ -43,6 +43,14 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
     } else if (!baked.normals.empty()) {
       baked.normals.resize(baked.positions.size(), glm::vec3(0.0f));
     }
+    if (!mesh.uvs.empty() || !baked.uvs.empty()) {
+      baked.uvs.resize(base, glm::vec2(0.0f));
+      if (mesh.uvs.empty()) {
+        baked.uvs.resize(baked.positions.size(), glm::vec2(0.0f));
+      } else {
+        baked.uvs.insert(baked.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
+      }
+    }
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1], c = mesh.indices[3 * t + 2];
       if (det < 0.0f) {

@@ -7,7 +7,8 @@ namespace wp::gpu {
 
 static_assert(sizeof(BvhNode) == 64);
 static_assert(sizeof(GpuTriangle) == 64);
-static_assert(sizeof(GpuTriangleShading) == 48);
+static_assert(sizeof(GpuTriangleShading) == 64);
+static_assert(sizeof(GpuTexture) == 16);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(sizeof(GpuPlane) == 32);
 static_assert(sizeof(GpuMaterial) == 80);

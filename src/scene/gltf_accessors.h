@@ -19,6 +19,9 @@ namespace wp::gltf {
 std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int accessor, const std::string& where,
                                          const char* attribute);
 
+// Reads a FLOAT VEC2 accessor (TEXCOORD_0) with the same checks as readVec3Attribute.
+std::vector<glm::vec2> readTexCoords(const Context& ctx, int accessor, const std::string& where);
+
 // Reads a SCALAR accessor of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, with the same
 // checks as readVec3Attribute (the values themselves are checked by the caller).
 std::vector<uint32_t> readIndices(const Context& ctx, int accessor, const std::string& where);

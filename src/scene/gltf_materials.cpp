@@ -6,6 +6,8 @@
 #include <limits>
 #include <string>
 
+#include "scene/gltf_textures.h"
+
 namespace wp::gltf {
 
 namespace {
@@ -103,24 +105,40 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   return out;
 }
 
-bool hasTexture(const tinygltf::Material& material) {
-  return material.pbrMetallicRoughness.baseColorTexture.index >= 0 || material.emissiveTexture.index >= 0 ||
-         material.normalTexture.index >= 0 || material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0;
+// Reads the base colour and metallic-roughness textures into `table`; returns whether the
+// material has textures that wavepath ignores (emissive, normal, occlusion, or a texture on
+// another TEXCOORD set than 0).
+bool readTextures(const tinygltf::Material& material, const std::string& where,
+                  TextureTable& table, Material& out) {
+  bool ignored = material.emissiveTexture.index >= 0 || material.normalTexture.index >= 0 ||
+                 material.occlusionTexture.index >= 0;
+  const tinygltf::TextureInfo& base = material.pbrMetallicRoughness.baseColorTexture;
+  if (base.index >= 0 && base.texCoord == 0) {
+    out.baseColorTexture = table.add(base.index, true, where);
+  }
+  const tinygltf::TextureInfo& metallicRoughness = material.pbrMetallicRoughness.metallicRoughnessTexture;
+  if (metallicRoughness.index >= 0 && metallicRoughness.texCoord == 0) {
+    out.metallicRoughnessTexture = table.add(metallicRoughness.index, false, where);
+  }
+  return ignored || (base.index >= 0 && base.texCoord != 0) ||
+         (metallicRoughness.index >= 0 && metallicRoughness.texCoord != 0);
 }
 
 }  // namespace
 
-std::vector<Material> convertMaterials(const Context& ctx) {
+std::vector<Material> convertMaterials(const Context& ctx, std::vector<Texture>& textures) {
   std::vector<Material> materials;
-  size_t textured = 0;
+  TextureTable table(ctx, textures);
+  size_t ignoring = 0;
   for (size_t i = 0; i < ctx.model.materials.size(); ++i) {
-    materials.push_back(convert(ctx, ctx.model.materials[i], i));
-    textured += hasTexture(ctx.model.materials[i]) ? 1 : 0;
+    const tinygltf::Material& material = ctx.model.materials[i];
+    materials.push_back(convert(ctx, material, i));
+    ignoring += readTextures(material, describe("material", i, material.name), table, materials.back()) ? 1 : 0;
   }
-  if (textured > 0) {
-    warnAt(ctx, "", std::to_string(textured) + " of " + std::to_string(materials.size()) +
-                        " materials have textures, which wavepath ignores for now: they render with their "
-                        "constant factors");
+  if (ignoring > 0) {
+    warnAt(ctx, "", std::to_string(ignoring) + " of " + std::to_string(materials.size()) +
+                        " materials have emissive, normal or occlusion textures, or textures on TEXCOORD_1 or "
+                        "later, which wavepath ignores: those render with their constant factors");
   }
   return materials;
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "scene/gltf_accessors.h"
@@ -45,9 +46,10 @@ std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, int mode) {
 struct VertexSource {
   int position = -1;
   int normal = -1;  // -1: none
+  int uv = -1;      // TEXCOORD_0, -1: none
 
   bool operator<(const VertexSource& other) const {
-    return position != other.position ? position < other.position : normal < other.normal;
+    return std::tie(position, normal, uv) < std::tie(other.position, other.normal, other.uv);
   }
 };
 
@@ -87,7 +89,9 @@ private:
 
     const uint32_t material = materialOf(primitive, where);
     const auto normal = primitive.attributes.find("NORMAL");
-    const VertexSource source{position->second, normal == primitive.attributes.end() ? -1 : normal->second};
+    const auto uv = primitive.attributes.find("TEXCOORD_0");
+    const VertexSource source{position->second, normal == primitive.attributes.end() ? -1 : normal->second,
+                              uv == primitive.attributes.end() ? -1 : uv->second};
     const uint32_t vertexCount = addVertices(source, where);
     std::vector<uint32_t> sequence;
     if (primitive.indices == -1) {
@@ -151,6 +155,19 @@ private:
     mesh_.positions.insert(mesh_.positions.end(), positions.begin(), positions.end());
     if (source.normal >= 0 || !mesh_.normals.empty()) {
       mesh_.normals.insert(mesh_.normals.end(), normals.begin(), normals.end());
+    }
+    if (source.uv >= 0 || !mesh_.uvs.empty()) {
+      std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
+      if (source.uv >= 0) {
+        uvs = readTexCoords(ctx_, source.uv, where);
+        if (uvs.size() != positions.size()) {
+          fail(ctx_, where,
+               "TEXCOORD_0 has " + std::to_string(uvs.size()) + " vertices but POSITION " +
+                   std::to_string(positions.size()) + "; re-export the file");
+        }
+      }
+      mesh_.uvs.resize(mesh_.positions.size() - positions.size(), glm::vec2(0.0f));
+      mesh_.uvs.insert(mesh_.uvs.end(), uvs.begin(), uvs.end());
     }
     return count;
   }

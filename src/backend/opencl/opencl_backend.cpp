@@ -89,8 +89,11 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
   sceneBuffers_[4] = uploadVector(context, scene.materials);
   sceneBuffers_[5] = uploadVector(context, scene.lights);
   sceneBuffers_[6] = uploadVector(context, scene.triangleShading);
-  const uint32_t bindings[] = {WP_BINDING_NODES,  WP_BINDING_TRIANGLES, WP_BINDING_INSTANCES,        WP_BINDING_PLANES,
-                               WP_BINDING_MATERIALS, WP_BINDING_LIGHTS, WP_BINDING_TRIANGLE_SHADING};
+  sceneBuffers_[7] = uploadVector(context, scene.textures);
+  sceneBuffers_[8] = uploadVector(context, scene.texels);
+  const uint32_t bindings[] = {WP_BINDING_NODES,     WP_BINDING_TRIANGLES, WP_BINDING_INSTANCES,
+                               WP_BINDING_PLANES,    WP_BINDING_MATERIALS, WP_BINDING_LIGHTS,
+                               WP_BINDING_TRIANGLE_SHADING, WP_BINDING_TEXTURES, WP_BINDING_TEXELS};
   sceneBytes_ = 0;
   uint64_t largest = 0;
   for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {

@@ -59,7 +59,7 @@ private:
   bool validate_;
 
   // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
-  std::array<OpenClBuffer, 7> sceneBuffers_;
+  std::array<OpenClBuffer, 9> sceneBuffers_;
   uint64_t sceneBytes_ = 0;
   OpenClBuffer params_;
   OpenClBuffer rays_;

@@ -48,6 +48,8 @@ VkDescriptorType descriptorType(uint32_t binding) {
     case WP_BINDING_MATERIALS:
     case WP_BINDING_LIGHTS:
     case WP_BINDING_TRIANGLE_SHADING:
+    case WP_BINDING_TEXTURES:
+    case WP_BINDING_TEXELS:
     case WP_BINDING_RAYS_READ:
     case WP_BINDING_HITS_READ:
     case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -193,6 +195,8 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   uploadVector(*context_, sceneBuffers_[4], scene.materials);
   uploadVector(*context_, sceneBuffers_[5], scene.lights);
   uploadVector(*context_, sceneBuffers_[6], scene.triangleShading);
+  uploadVector(*context_, sceneBuffers_[7], scene.textures);
+  uploadVector(*context_, sceneBuffers_[8], scene.texels);
   if (params_.handle() != VK_NULL_HANDLE) {
     writeDescriptors();
   }
@@ -234,7 +238,7 @@ void VulkanBackend::writeDescriptors() {
   std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers = {
       &params_,      &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3], &sceneBuffers_[4],
       &sceneBuffers_[5], &rays_,        &hits_,            &shadowRays_,      &pathRadiance_,    &counters_,
-      &accumulation_, &sceneBuffers_[6], &rays_,          &hits_,            &shadowRays_};
+      &accumulation_, &sceneBuffers_[6], &sceneBuffers_[7], &sceneBuffers_[8], &rays_, &hits_, &shadowRays_};
   for (VkBufferView view : texelViews_) {
     vkDestroyBufferView(context_->device, view, nullptr);
   }

@@ -47,7 +47,7 @@ private:
   std::vector<VkBufferView> texelViews_;
 
   // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
-  std::array<VulkanBuffer, 7> sceneBuffers_;
+  std::array<VulkanBuffer, 9> sceneBuffers_;
   VulkanBuffer params_;
   VulkanBuffer rays_;
   VulkanBuffer hits_;
