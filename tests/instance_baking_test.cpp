@@ -41,6 +41,32 @@ Scene testScene() {
   return scene;
 }
 
+// Vertex normals go through the inverse transpose (a non-uniform scale tilts them the other
+// way than positions), stay unit length, and a mesh without normals placed before one with
+// gets zeros (flat) for its vertices.
+TEST(InstanceBaking, TransformsVertexNormalsWithTheInverseTranspose) {
+  Scene scene;
+  scene.materials.resize(1);
+  Mesh flat;
+  flat.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  flat.indices = {0, 1, 2};
+  flat.materials = {0};
+  Mesh smooth = flat;
+  smooth.normals = {glm::normalize(glm::vec3(1, 1, 0)), {0, 0, 1}, {0, 0, 0}};
+  scene.meshes = {flat, smooth};
+  glm::mat4 stretch = glm::scale(glm::mat4(1.0f), glm::vec3(2, 1, 1));
+  scene.instances = {{0, glm::mat4(1.0f)}, {1, stretch}};
+  Scene baked = bakeSingleUseMeshes(scene);
+  ASSERT_EQ(baked.meshes.size(), 1u);
+  const std::vector<glm::vec3>& normals = baked.meshes[0].normals;
+  ASSERT_EQ(normals.size(), 6u);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(normals[i], glm::vec3(0.0f));
+  glm::vec3 expected = glm::normalize(glm::vec3(0.5f, 1.0f, 0.0f));
+  EXPECT_NEAR(glm::length(normals[3] - expected), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(normals[4] - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
+  EXPECT_EQ(normals[5], glm::vec3(0.0f));
+}
+
 TEST(InstanceBaking, MergesSingleUseMeshesAndKeepsSharedOnesInstanced) {
   Scene baked = bakeSingleUseMeshes(testScene());
   ASSERT_EQ(baked.meshes.size(), 2u);

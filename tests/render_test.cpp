@@ -9,48 +9,18 @@
 
 #include "image/image_io.h"
 #include "support/gltf_writer.h"
+#include "support/image_stats.h"
+#include "support/render_exr.h"
 #include "support/run_wavepath.h"
 
 namespace wp::test {
 namespace {
 
-// Mean radiance over the image and its standard error. Pixels are independent, so the
-// variance of the mean is the sum of the per-pixel variances (the EXR's variance AOV)
-// divided by the squared pixel count.
-struct ImageMean {
-  glm::dvec3 mean{0.0};
-  glm::dvec3 standardError{0.0};
-};
-
-ImageMean imageMean(const RadianceImage& image) {
-  ImageMean m;
-  glm::dvec3 varianceSum(0.0);
-  for (size_t i = 0; i < image.mean.size(); ++i) {
-    m.mean += glm::dvec3(image.mean[i]);
-    varianceSum += glm::dvec3(image.variance[i]);
-  }
-  double n = double(image.mean.size());
-  m.mean /= n;
-  m.standardError = glm::sqrt(varianceSum) / n;
-  return m;
-}
-
-RadianceImage render(const std::string& backend, const std::filesystem::path& scene,
-                     const std::vector<std::string>& flags) {
-  std::filesystem::path out = scratchDirectory("render") / "image.exr";
-  std::vector<std::string> args = {"render", scene.string(), "-o", out.string(), "--backend", backend};
-  args.insert(args.end(), flags.begin(), flags.end());
-  RunResult r = runWavepath(args);
-  EXPECT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
-  return readExr(out);
-}
-
 // The estimator tests run once per backend; the test name ends in the backend's name.
 class BackendTest : public ::testing::TestWithParam<std::string> {
 protected:
   RadianceImage render(const std::filesystem::path& scene, const std::vector<std::string>& flags) {
-    return test::render(GetParam(), scene, flags);
+    return renderExr(GetParam(), scene, flags);
   }
 };
 class Furnace : public BackendTest {};
@@ -101,14 +71,34 @@ TEST_P(CornellBox, MisNeeAndBsdfSamplingAgreeInMeanRadiance) {
   for (size_t a = 0; a < means.size(); ++a) {
     for (size_t b = a + 1; b < means.size(); ++b) {
       for (int c = 0; c < 3; ++c) {
-        double se = std::sqrt(means[a].standardError[c] * means[a].standardError[c] +
-                              means[b].standardError[c] * means[b].standardError[c]);
-        double z = std::abs(means[a].mean[c] - means[b].mean[c]) / se;
+        double se = differenceError(means[a], means[b], c);
+        double z = meanZ(means[a], means[b], c);
         EXPECT_LT(z, 4.0) << "modes " << a << " and " << b << ", channel " << c << ": " << means[a].mean[c]
                           << " vs " << means[b].mean[c] << " (se " << se << ")";
         // The comparison is only sharp if the noise is small against the signal.
         EXPECT_LT(se, 0.02 * means[0].mean[c]);
       }
+    }
+  }
+}
+
+// Light selection by solid angle changes only the variance: with it, MIS and NEE-only agree
+// with NEE-only under the default selection by power (same statistic as above).
+TEST_P(CornellBox, SolidAngleLightSelectionAgreesWithSelectionByPower) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  std::vector<std::vector<std::string>> runs = {{"--mode", "nee"},
+                                                {"--mode", "nee", "--light-selection", "solid-angle"},
+                                                {"--mode", "mis", "--light-selection", "solid-angle"}};
+  std::vector<ImageMean> means;
+  for (std::vector<std::string> flags : runs) {
+    flags.insert(flags.end(), {"--width", "48", "--height", "48", "--spp", "128", "--max-depth", "8"});
+    means.push_back(imageMean(render(scene, flags)));
+  }
+  for (size_t a = 1; a < means.size(); ++a) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LT(meanZ(means[0], means[a], c), 4.0)
+          << "run " << a << ", channel " << c << ": " << means[0].mean[c] << " vs " << means[a].mean[c];
+      EXPECT_LT(differenceError(means[0], means[a], c), 0.02 * means[0].mean[c]);
     }
   }
 }
@@ -158,8 +148,8 @@ INSTANTIATE_TEST_SUITE_P(Backend, Determinism, kBackends, backendName);
 TEST(BackendAgreement, VulkanAndOpenClRenderTheSameImageFromTheSameSeed) {
   std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
   std::vector<std::string> flags = {"--width", "64", "--height", "64", "--spp", "64", "--seed", "5", "--max-depth", "8"};
-  RadianceImage vulkan = render("vulkan", scene, flags);
-  RadianceImage opencl = render("opencl", scene, flags);
+  RadianceImage vulkan = renderExr("vulkan", scene, flags);
+  RadianceImage opencl = renderExr("opencl", scene, flags);
   ASSERT_EQ(vulkan.mean.size(), opencl.mean.size());
 
   ImageMean a = imageMean(vulkan);

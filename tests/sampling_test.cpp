@@ -179,7 +179,7 @@ TEST_P(LightTriangle, SamplesFollowTheRayCastPdf) {
     double distance = glm::dot(c.v0 - c.position, normal) / glm::dot(d, normal);
     worstDistanceError = std::max(worstDistanceError, std::fabs(s.distance / distance - 1.0));
     float cosAtLight = float(glm::dot(normal, d));
-    float lightPdf = gpu::lightPdf(light, s.distance * s.distance, cosAtLight);
+    float lightPdf = gpu::lightPdf(light, light.edge1.w, s.distance * s.distance, cosAtLight);
     worstLightPdfError = std::max(worstLightPdfError, std::fabs(lightPdf / reference - 1.0));
     if (s.radiance != expectedRadiance) ++wrongRadiance;
     directions.push_back(d);
@@ -208,7 +208,7 @@ TEST_P(LightTriangle, LightPdfIntegratesToTheSelectionProbability) {
     if (geometric == 0.0) return 0.0;
     glm::dvec3 e1 = c.v1 - c.v0, e2 = c.v2 - c.v0, n = glm::normalize(glm::cross(e1, e2));
     double distance = glm::dot(c.v0 - c.position, n) / glm::dot(d, n);
-    return double(gpu::lightPdf(light, float(distance * distance), float(glm::dot(n, d))));
+    return double(gpu::lightPdf(light, selection, float(distance * distance), float(glm::dot(n, d))));
   };
   auto cells = triangleBinning(c).expectedCounts(pdf, 1.0, 48, coneOf(c));
   double integral = 0;
@@ -308,12 +308,67 @@ TEST(SampleLight, MultipliesSelectionAndTriangleDensities) {
   glm::vec3 position(0.1f, 0.0f, 0.2f);
   for (int i = 0; i < 1000; ++i) {
     glm::vec3 u(random.next(), random.next(), random.next());
-    gpu::LightSample s = gpu::sampleLight(lights.data(), 3, position, u);
+    gpu::LightSample s = gpu::sampleLight(lights.data(), 3, WP_LIGHT_SELECTION_POWER, position, u);
     const gpu::GpuLight& chosen = lights[gpu::selectLight(lights.data(), 3, u.x)];
     gpu::LightSample alone = gpu::sampleLightTriangle(chosen, position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
     ASSERT_FLOAT_EQ(s.pdf, alone.pdf * chosen.edge1.w);
   }
+}
+
+// The eight faces of an octahedron about any point inside it cover the whole sphere, so
+// their solid angles sum to 4 pi; seen from near a face, that face spans more than a
+// hemisphere's half (the branch where the formula's denominator is negative). From the
+// centre each face is an octant, pi / 2.
+TEST(SolidAngle, OctahedronFacesSumToTheSphere) {
+  const double kPi = 3.14159265358979323846;
+  for (glm::vec3 p : {glm::vec3(0.0f), glm::vec3(0.3f, 0.3f, 0.3f), glm::vec3(0.1f, -0.2f, 0.5f)}) {
+    double sum = 0.0;
+    for (int octant = 0; octant < 8; ++octant) {
+      glm::vec3 sign(octant & 1 ? -1.0f : 1.0f, octant & 2 ? -1.0f : 1.0f, octant & 4 ? -1.0f : 1.0f);
+      float omega = gpu::triangleSolidAngle(glm::vec3(sign.x, 0, 0) - p, glm::vec3(0, sign.y, 0) - p,
+                                            glm::vec3(0, 0, sign.z) - p);
+      if (p == glm::vec3(0.0f)) {
+        EXPECT_NEAR(omega, kPi / 2.0, 1e-5);
+      }
+      sum += omega;
+    }
+    EXPECT_NEAR(sum, 4.0 * kPi, 1e-4) << p.x << " " << p.y << " " << p.z;
+  }
+}
+
+// Selection by solid angle: each light is chosen as often as its weight says (chi-square),
+// a one-sided light seen from behind never, and sampleLight's pdf includes the selection
+// probability that the MIS weight at a light hit recomputes.
+TEST(SampleLight, SolidAngleSelectionFollowsTheWeights) {
+  std::vector<gpu::GpuLight> lights;
+  for (int i = 0; i < 3; ++i) lights.push_back(makeLight(kTriangleCases[i], 0.0f));
+  lights[2].info.y = 1u;  // LargeAndClose, double-sided: lit from below as well
+  glm::vec3 position(0.1f, 0.0f, 0.2f);
+  std::vector<double> expected;
+  double sum = gpu::solidAngleWeightSum(lights.data(), 3, position);
+  const int kCount = 100000;
+  for (const gpu::GpuLight& light : lights) expected.push_back(kCount * gpu::solidAngleWeight(light, position) / sum);
+  EXPECT_EQ(expected[0], 0.0);  // "Facing" shows this point its back: cross(e1, e2) points away
+  std::vector<double> observed(3, 0.0);
+  TestRandom random(5);
+  for (int i = 0; i < kCount; ++i) {
+    glm::vec3 u(random.next(), random.next(), random.next());
+    gpu::LightChoice choice = gpu::selectLightBySolidAngle(lights.data(), 3, position, u.x);
+    ASSERT_LT(choice.index, 3u);
+    observed[choice.index] += 1.0;
+    float probability = gpu::lightSelectionProbability(lights.data(), 3, WP_LIGHT_SELECTION_SOLID_ANGLE,
+                                                       lights[choice.index], position);
+    ASSERT_FLOAT_EQ(choice.probability, probability);
+    gpu::LightSample s = gpu::sampleLight(lights.data(), 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, u);
+    gpu::LightSample alone = gpu::sampleLightTriangle(lights[choice.index], position, glm::vec2(u.y, u.z));
+    ASSERT_EQ(s.direction, alone.direction);
+    ASSERT_FLOAT_EQ(s.pdf, alone.pdf * probability);
+  }
+  EXPECT_EQ(observed[0], 0.0);
+  std::vector<double> o = {observed[1], observed[2]}, e = {expected[1], expected[2]};
+  auto result = chiSquareTest(o, e);
+  EXPECT_TRUE(result.accepts(0.01)) << result.describe();
 }
 
 // ---- Random numbers ------------------------------------------------------------------------

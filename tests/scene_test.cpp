@@ -9,11 +9,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include <stb_image_write.h>
 
 #include "core/error.h"
 #include "scene/gltf_loader.h"
@@ -369,6 +372,149 @@ TEST_F(SceneTest, ConvertsMaterialsWithEmissiveStrength) {
   expectNear(lamp.baseColor, {1, 1, 1});
   EXPECT_FALSE(lamp.doubleSided);
   EXPECT_EQ(scene.sky.width, 0u);
+}
+
+TEST_F(SceneTest, ConvertsMetallicRoughnessIorTransmissionVolumeAndLambert) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "extensionsUsed":["KHR_materials_ior","KHR_materials_transmission","KHR_materials_volume"],
+    "extensionsRequired":["KHR_materials_transmission"],
+    "materials":[{"name":"default"},
+                 {"name":"glass","pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.25},
+                  "extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_transmission":{"transmissionFactor":0.9},
+                                "KHR_materials_volume":{"attenuationColor":[0.5,0.75,1],"attenuationDistance":2}}},
+                 {"name":"clay","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":2},
+                  "extras":{"wavepath":{"bsdf":"lambert"}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1},
+                             {"attributes":{"POSITION":0},"material":2}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.materials.size(), 3u);
+  const wp::Material& fallback = scene.materials[0];  // glTF's defaults: a rough metal
+  EXPECT_EQ(fallback.bsdf, wp::Material::Bsdf::Gltf);
+  EXPECT_FLOAT_EQ(fallback.metallic, 1.0f);
+  EXPECT_FLOAT_EQ(fallback.roughness, 1.0f);
+  EXPECT_FLOAT_EQ(fallback.ior, 1.5f);
+  EXPECT_FLOAT_EQ(fallback.transmission, 0.0f);
+  EXPECT_EQ(fallback.attenuationDistance, std::numeric_limits<float>::max());
+  const wp::Material& glass = scene.materials[1];
+  EXPECT_FLOAT_EQ(glass.metallic, 0.0f);
+  EXPECT_FLOAT_EQ(glass.roughness, 0.25f);
+  EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+  EXPECT_FLOAT_EQ(glass.transmission, 0.9f);
+  expectNear(glass.attenuationColor, {0.5f, 0.75f, 1.0f});
+  EXPECT_FLOAT_EQ(glass.attenuationDistance, 2.0f);
+  EXPECT_EQ(scene.materials[2].bsdf, wp::Material::Bsdf::Lambert);
+  EXPECT_FLOAT_EQ(scene.materials[2].metallic, 1.0f);  // clamped to glTF's [0, 1]
+}
+
+TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
+  GltfFile file = triangleFile();
+  auto errorOf = [&](const std::string& material) {
+    return errorOfJson(file.json(R"("materials":[)" + material + R"(],
+      "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+      "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  };
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_ior":{"ior":0.5}}})")
+                .find("material 0: KHR_materials_ior.ior must be a number in [1, 10]; fix the material"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_transmission":{"transmissionFactor":"all"}}})")
+                .find("KHR_materials_transmission.transmissionFactor must be a number in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_volume":{"attenuationDistance":0}}})")
+                .find("KHR_materials_volume.attenuationDistance must be a number > 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_volume":{"attenuationColor":[1,2,1]}}})")
+                .find("KHR_materials_volume.attenuationColor must be 3 numbers in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"bsdf":"phong"}}})")
+                .find(R"(a material's extras.wavepath must be {"bsdf": "lambert"})"),
+            std::string::npos);
+}
+
+// --- vertex normals ---
+
+// A primitive without NORMAL before one with: the mesh gets normals, zero (flat) for the
+// first primitive's vertices, and unit length for the second's however they were stored.
+TEST_F(SceneTest, ReadsVertexNormalsAndZeroFillsPrimitivesWithout) {
+  GltfFile file;
+  file.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});            // accessor 0
+  file.positions({{0, 0, 1}, {1, 0, 1}, {0, 1, 1}});            // accessor 1
+  file.positions({{0, 0, 2}, {0.6f, 0, 0.8f}, {0, 0, 0}});      // accessor 2: NORMAL of 1
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}},{"attributes":{"POSITION":1,"NORMAL":2}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const wp::Mesh& mesh = scene.meshes[0];
+  ASSERT_EQ(mesh.normals.size(), 6u);
+  for (int i = 0; i < 3; ++i) expectNear(mesh.normals[i], {0, 0, 0});
+  expectNear(mesh.normals[3], {0, 0, 1});
+  expectNear(mesh.normals[4], {0.6f, 0, 0.8f});
+  expectNear(mesh.normals[5], {0, 0, 0});  // zero stays zero: that vertex shades flat
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":3}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("NORMAL"), std::string::npos) << message;
+}
+
+// --- textures ---
+
+// A 2x1 PNG: red, then blue with alpha 128.
+std::string twoTexelPng() {
+  const uint8_t rgba[] = {255, 0, 0, 255, 0, 0, 255, 128};
+  std::string png;
+  stbi_write_png_to_func([](void* out, void* data, int size) { static_cast<std::string*>(out)->append(static_cast<char*>(data), size); },
+                         &png, 2, 1, 4, rgba, 8);
+  return png;
+}
+
+const std::string kTexturedMaterial = R"(
+    "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicRoughnessTexture":{"index":0}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],
+    "samplers":[{"magFilter":9728,"wrapS":33071,"wrapT":33648}],
+    "textures":[{"source":0,"sampler":0}],)";
+
+void expectTwoTexelTextures(const Scene& scene) {
+  ASSERT_EQ(scene.textures.size(), 2u);  // one sRGB (base colour), one linear
+  const wp::Texture& base = scene.textures[static_cast<size_t>(scene.materials[0].baseColorTexture)];
+  EXPECT_TRUE(base.srgb);
+  EXPECT_FALSE(scene.textures[static_cast<size_t>(scene.materials[0].metallicRoughnessTexture)].srgb);
+  EXPECT_EQ(base.width, 2u);
+  EXPECT_EQ(base.height, 1u);
+  EXPECT_EQ(base.rgba, (std::vector<uint32_t>{0xff0000ffu, 0x80ff0000u}));
+  EXPECT_TRUE(base.nearest);
+  EXPECT_EQ(base.wrapS, wp::Texture::Wrap::Clamp);
+  EXPECT_EQ(base.wrapT, wp::Texture::Wrap::Mirror);
+  ASSERT_EQ(scene.meshes[0].uvs.size(), 3u);
+  expectNear(glm::vec3(scene.meshes[0].uvs[2], 0.0f), {0.0f, 1.0f, 0.0f});
+}
+
+TEST_F(SceneTest, ReadsTexturesFromDataUrisAndGlbBufferViews) {
+  const std::string png = twoTexelPng();
+  GltfFile file = triangleFile();
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");
+  expectTwoTexelTextures(load(file.json(kTexturedMaterial + R"("images":[{"uri":"data:image/png;base64,)" +
+                                        base64(png) + R"("}])")));
+  const int view = file.view(png);
+  const fs::path glb = write("scene.glb", file.glb(kTexturedMaterial + R"("images":[{"bufferView":)" +
+                                                   std::to_string(view) + R"(,"mimeType":"image/png"}])"));
+  expectTwoTexelTextures(loadScene(glb));
+}
+
+TEST_F(SceneTest, RejectsMissingAndUndecodableImages) {
+  GltfFile file = triangleFile();
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");
+  const std::string missing = errorOfJson(file.json(kTexturedMaterial + R"("images":[{"uri":"nowhere.png"}])"));
+  EXPECT_NE(missing.find("nowhere.png"), std::string::npos) << missing;
+  const std::string garbage =
+      errorOfJson(file.json(kTexturedMaterial + R"("images":[{"uri":"data:image/png;base64,)" +
+                            base64("this is not an image") + R"("}])"));
+  EXPECT_NE(garbage.find("image 0 cannot be decoded"), std::string::npos) << garbage;
+  const std::string index = errorOfJson(file.json(R"(
+    "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":3}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(index.find("material 0: texture 3 does not exist"), std::string::npos) << index;
 }
 
 TEST_F(SceneTest, AppendsTheDefaultMaterialOnceForPrimitivesWithout) {

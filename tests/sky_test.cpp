@@ -11,14 +11,15 @@
 namespace wp::test {
 namespace {
 
-// A sphere of albedo `albedo` seen from outside, and nothing else.
+// A Lambertian sphere of albedo `albedo` seen from outside, and nothing else.
 std::string sphereScene(float albedo) {
   return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
     "nodes": [{"extras": {"wavepath": {"shape": "sphere", "radius": 1.0, "material": 0}}},
               {"camera": 0, "translation": [0, 0.5, 4]}],
     "cameras": [{"type": "perspective", "perspective": {"yfov": 0.9, "znear": 0.01}}],
     "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [)" +
-         std::to_string(albedo) + "," + std::to_string(albedo) + "," + std::to_string(albedo) + R"(, 1]}}]})";
+         std::to_string(albedo) + "," + std::to_string(albedo) + "," + std::to_string(albedo) +
+         R"(, 1]}, "extras": {"wavepath": {"bsdf": "lambert"}}}]})";
 }
 
 struct Mean {

@@ -77,12 +77,14 @@ def materials():
     """The glTF materials, in the order MATERIAL_INDEX gives."""
     out = []
     for name, albedo in ALBEDO.items():
-        # Two-sided like the reference: the walls are never seen from behind anyway.
+        # Two-sided like the reference: the walls are never seen from behind anyway. Ideal
+        # diffuse like the reference's walls (a glTF dielectric would add a specular coat).
         out.append({
             "name": name,
             "doubleSided": True,
             "pbrMetallicRoughness": {
                 "baseColorFactor": [*albedo, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
+            "extras": {"wavepath": {"bsdf": "lambert"}},
         })
     strength = max(LIGHT_RADIANCE)
     out.append({
@@ -92,6 +94,8 @@ def materials():
             "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
         "emissiveFactor": [c / strength for c in LIGHT_RADIANCE],
         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength}},
+        # Black Lambert: it emits and reflects nothing, as in the reference.
+        "extras": {"wavepath": {"bsdf": "lambert"}},
     })
     return out
 

@@ -6,6 +6,9 @@ import json
 import math
 import pathlib
 
+# Pure Lambertian surfaces (wavepath's material extras), as the README pictures show them.
+LAMBERT = {"extras": {"wavepath": {"bsdf": "lambert"}}}
+
 def sphere(x, z, material):
     return {"translation": [x, 0.5, z],
             "extras": {"wavepath": {"shape": "sphere", "radius": 0.5, "material": material}}}
@@ -27,10 +30,10 @@ def main():
         "cameras": [{"type": "perspective",
                      "perspective": {"yfov": 0.6, "aspectRatio": 16 / 9, "znear": 0.01}}],
         "materials": [
-            {"name": "ground", "pbrMetallicRoughness": {"baseColorFactor": [0.45, 0.45, 0.45, 1]}},
-            {"name": "white", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}},
-            {"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.25, 0.2, 1]}},
-            {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.35, 0.8, 1]}},
+            {"name": "ground", "pbrMetallicRoughness": {"baseColorFactor": [0.45, 0.45, 0.45, 1]}, **LAMBERT},
+            {"name": "white", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}, **LAMBERT},
+            {"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.25, 0.2, 1]}, **LAMBERT},
+            {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.35, 0.8, 1]}, **LAMBERT},
         ],
     }
     out = pathlib.Path(__file__).resolve().parent.parent / "assets" / "sky-spheres.gltf"

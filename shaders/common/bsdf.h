@@ -1,36 +1,62 @@
-// BSDF evaluation, sampling and density. Directions are in the local shading frame (z =
-// normal, oriented towards the outgoing direction wo).
+// The BSDF of a GpuMaterial: ideal diffuse (Lambert), or the glTF metallic-roughness mixture
+// of material.h. Directions are in the local frame whose z is the surface's outward normal
+// (not flipped towards wo: glass needs to know which side the path is on).
 #ifndef WP_BSDF_H
 #define WP_BSDF_H
 
 #include "layout.h"
-#include "sampling.h"
+#include "material.h"
 
 WP_BEGIN
 
-WP_STRUCT(BsdfSample)
-  vec3 wi;      // sampled incident direction (local)
-  vec3 weight;  // f * |cos(theta_i)| / pdf
-  float pdf;    // solid-angle density; 0 means no valid sample
-WP_STRUCT_END(BsdfSample)
+WP_FN vec3 albedoOf(GpuMaterial m) { return make_vec3(m.baseColor.x, m.baseColor.y, m.baseColor.z); }
 
-// f * |cos(theta_i)| for outgoing wo and incident wi (Lambert: albedo / pi).
-WP_FN vec3 bsdfEvalCos(GpuMaterial m, vec3 wo, vec3 wi) {
-  vec3 albedo = make_vec3(m.baseColor.x, m.baseColor.y, m.baseColor.z);
-  return (wo.z > 0.0f && wi.z > 0.0f) ? albedo * (wi.z * WP_INV_PI) : make_vec3(0.0f, 0.0f, 0.0f);
-}
-
-// Density with which bsdfSample picks wi.
-WP_FN float bsdfPdf(GpuMaterial m, vec3 wo, vec3 wi) {
-  return (wo.z > 0.0f) ? cosineHemispherePdf(wi.z) : 0.0f;
-}
-
-WP_FN BsdfSample bsdfSample(GpuMaterial m, vec3 wo, vec2 u) {
-  BsdfSample s;
-  s.wi = sampleCosineHemisphere(u);
-  s.pdf = bsdfPdf(m, wo, s.wi);
-  s.weight = s.pdf > 0.0f ? bsdfEvalCos(m, wo, s.wi) / s.pdf : make_vec3(0.0f, 0.0f, 0.0f);
+WP_FN SurfaceMaterial surfaceMaterialOf(GpuMaterial m) {
+  SurfaceMaterial s;
+  s.baseColor = albedoOf(m);
+  s.metallic = m.surface.x;
+  s.roughness = m.surface.y;
+  s.ior = m.surface.z;
+  s.transmission = m.surface.w;
   return s;
+}
+
+// Lambert, two-sided: albedo / pi into wo's hemisphere, sampled by the cosine.
+WP_FN BsdfEval evalLambert(vec3 albedo, vec3 wo, vec3 wi) {
+  float side = sideOf(wo);
+  float cosI = wi.z * side;
+  if (wo.z * side < WP_BSDF_MIN_COS || cosI < WP_BSDF_MIN_COS) {
+    return noEval();
+  }
+  BsdfEval e;
+  e.fCos = albedo * (cosI * WP_INV_PI);
+  e.pdf = cosineHemispherePdf(cosI);
+  return e;
+}
+
+WP_FN MaterialSample sampleLambert(vec3 albedo, vec3 wo, vec2 u) {
+  float side = sideOf(wo);
+  vec3 wi = sampleCosineHemisphere(u);
+  if (wo.z * side < WP_BSDF_MIN_COS || wi.z < WP_BSDF_MIN_COS) {
+    return noSample();
+  }
+  return sampleFromEval(wi, evalLambert(albedo, mirrorZ(wo, side), wi), side);
+}
+
+// f |cos(theta_i)| and the density of wi under sampleBsdf with the same `flags` (WP_BSDF_*).
+WP_FN BsdfEval evalBsdf(GpuMaterial m, vec3 wo, vec3 wi, uint flags) {
+  if (m.info.x == WP_MATERIAL_LAMBERT) {
+    return evalLambert(albedoOf(m), wo, wi);
+  }
+  return evalMaterial(surfaceMaterialOf(m), wo, wi, flags);
+}
+
+// u in [0, 1)^3; see sampleMaterial for delta samples.
+WP_FN MaterialSample sampleBsdf(GpuMaterial m, vec3 wo, vec3 u, uint flags) {
+  if (m.info.x == WP_MATERIAL_LAMBERT) {
+    return sampleLambert(albedoOf(m), wo, make_vec2(u.y, u.z));
+  }
+  return sampleMaterial(surfaceMaterialOf(m), wo, u, flags);
 }
 
 WP_END

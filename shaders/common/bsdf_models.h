@@ -38,6 +38,10 @@
 // variance changes (smaller weight peaks at grazing angles). Pass the same flags to eval,
 // sample and pdf, or MIS weights no longer sum to 1.
 #define WP_BSDF_WIDEN_BECKMANN 1u
+// WP_BSDF_FIXED_LOBE_CHOICE: plastic picks its specular and diffuse lobes 50/50 instead of by
+// Fresnel (plasticSpecularProbability). Unbiased as well (the pdfs follow); it exists only
+// to measure what Fresnel blending gains (README, "Materials and textures").
+#define WP_BSDF_FIXED_LOBE_CHOICE 2u
 
 WP_BEGIN
 
@@ -171,7 +175,10 @@ WP_FN float disneyDiffuseFactor(float roughness, float cosO, float cosI, float c
 // by the Fresnel term weighted against the diffuse albedo, so a dark base does not waste
 // samples on a lobe that returns little (for a white base it is F itself). It depends on
 // wo alone, so the pdf of any wi is computable on the light-sampling side too.
-WP_FN float plasticSpecularProbability(vec3 albedo, float f0, float cosO) {
+WP_FN float plasticSpecularProbability(vec3 albedo, float f0, float cosO, uint flags) {
+  if ((flags & WP_BSDF_FIXED_LOBE_CHOICE) != 0u) {
+    return 0.5f;
+  }
   float f = fresnelSchlickScalar(f0, cosO);
   float total = f + (1.0f - f) * luminance(albedo);
   return total > 0.0f ? f / total : 1.0f;
@@ -182,7 +189,7 @@ WP_FN float plasticSpecularProbability(vec3 albedo, float f0, float cosO) {
 // keeps f reciprocal (a factor 1 - F(wi.h) alone lets a smooth plastic reflect up to twice
 // the light at grazing angles), and dividing by 1 - F_avg (Kelemen & Szirmay-Kalos 2001)
 // makes a white Lambertian base under a smooth coat reflect exactly 1.
-WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, float ior, vec3 wo, vec3 wi) {
+WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, float ior, uint flags, vec3 wo, vec3 wi) {
   float side = sideOf(wo);
   vec3 o = mirrorZ(wo, side);
   vec3 i = mirrorZ(wi, side);
@@ -196,7 +203,7 @@ WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, float ior, vec3 wo, vec
   float coat = (1.0f - fresnelSchlickScalar(f0, o.z)) * (1.0f - fresnelSchlickScalar(f0, i.z)) /
                (1.0f - fresnelSchlickAverage(f0));
   float diffuse = disneyDiffuseFactor(roughness, o.z, i.z, cosIH) * coat * WP_INV_PI;
-  float specularProbability = plasticSpecularProbability(albedo, f0, o.z);
+  float specularProbability = plasticSpecularProbability(albedo, f0, o.z, flags);
   BsdfEval e;
   e.fCos = albedo * (diffuse * i.z);
   e.pdf = (1.0f - specularProbability) * cosineHemispherePdf(i.z);
@@ -210,7 +217,7 @@ WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, float ior, vec3 wo, vec
 }
 
 // u.x picks the lobe, u.yz the direction.
-WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, float ior, vec3 wo, vec3 u) {
+WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, float ior, uint flags, vec3 wo, vec3 u) {
   float side = sideOf(wo);
   vec3 o = mirrorZ(wo, side);
   if (o.z < WP_BSDF_MIN_COS) {
@@ -218,7 +225,7 @@ WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, float ior, vec3
   }
   float alpha = alphaFromRoughness(roughness);
   float f0 = f0FromIor(ior);
-  float specularProbability = plasticSpecularProbability(albedo, f0, o.z);
+  float specularProbability = plasticSpecularProbability(albedo, f0, o.z, flags);
   vec3 wi;
   if (u.x < specularProbability) {
     if (alpha < WP_DELTA_ALPHA) {
@@ -232,7 +239,7 @@ WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, float ior, vec3
   if (wi.z < WP_BSDF_MIN_COS) {
     return noSample();
   }
-  return sampleFromEval(wi, evalPlastic(albedo, roughness, ior, o, wi), side);
+  return sampleFromEval(wi, evalPlastic(albedo, roughness, ior, flags, o, wi), side);
 }
 
 // ---- Rough glass: Walter et al. 2007 with Beckmann normals -------------------------------

@@ -11,12 +11,15 @@
 #include "rng.h"
 #include "sampling.h"
 #include "surface.h"
+#include "texture.h"
 
 WP_BEGIN
 
 #ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SHADING_BUFFERS WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER WP_ENV_BUFFERS
-#define WP_SHADING_BUFFER_ARGS WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG WP_ENV_BUFFER_ARGS
+#define WP_SHADING_BUFFERS \
+  WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER WP_ENV_BUFFERS WP_TEXTURE_BUFFERS
+#define WP_SHADING_BUFFER_ARGS \
+  WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG WP_ENV_BUFFER_ARGS WP_TEXTURE_BUFFER_ARGS
 #else
 #define WP_SHADING_BUFFERS
 #define WP_SHADING_BUFFER_ARGS
@@ -38,6 +41,13 @@ WP_STRUCT_END(ShadeResult)
 
 WP_FN vec3 xyz(vec4 v) { return make_vec3(v.x, v.y, v.z); }
 
+// The biased contribution clamp (RenderParams.shading.y, 0 = off) on what a path adds
+// after its first vertex; light seen directly by the camera is never clamped.
+WP_FN vec3 clampedContribution(RenderParams params, vec3 c) {
+  float limit = asFloat(params.shading.y);
+  return limit > 0.0f ? clampContribution(c, limit) : c;
+}
+
 // A ray that left the scene sees the sky. Next event estimation samples the sky with
 // probability sky.transform.z, so a BSDF-sampled ray's sky radiance is weighed against that.
 WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray) {
@@ -57,12 +67,48 @@ WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray)
     }
   }
   r.radiance = xyz(ray.throughput) * environmentRadiance(WP_ENV_RADIANCE_BUFFER_ARG params.sky, direction) * weight;
+  if (ray.state.y > 0u) {
+    r.radiance = clampedContribution(params, r.radiance);
+  }
   return r;
+}
+
+// The material at the hit with its textures applied (glTF: base colour times the texture;
+// metallic and roughness times the texture's blue and green). Surfaces without TEXCOORD_0
+// (and spheres and planes) use the constant factors.
+WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+  if (!s.hasUv) {
+    return m;
+  }
+  if (m.info.y != WP_INVALID) {
+    m.baseColor = m.baseColor * sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.y, s.uv);
+  }
+  if (m.info.z != WP_INVALID) {
+    vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.z, s.uv);
+    m.surface.x *= t.z;
+    m.surface.y *= t.y;
+  }
+  return m;
+}
+
+// True when wi is on the same side of the geometric surface as wo (product of the two
+// geometric cosines > 0) exactly when it is on the same side of the shading frame
+// (product of the local cosines > 0): reflection stays reflection.
+WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) {
+  return (woGeometric * wiGeometric > 0.0f) == (localProduct > 0.0f);
 }
 
 // Bounce numbering follows Cycles' "max bounces": the camera ray hits the vertex of bounce
 // 0, and with params.mode.x = D the path gathers light at vertices 0..D (next event
 // estimation there, or emission found by the ray leaving them), so D = 0 is direct light.
+//
+// Delta lobes (smooth mirror and glass) cannot be light-sampled: evalBsdf gives them no
+// value, so next event estimation counts only a material's other lobes, and a delta sample
+// stores pdf 0 on its ray so that the emission it finds gets MIS weight 1 in every mode.
+//
+// Media: a ray that reaches the back side of a surface travelled inside it, so the
+// material's KHR_materials_volume attenuation applies over t (Beer's law). This assumes
+// closed meshes and media that do not nest or overlap.
 WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
                            uint primitive) {
   ShadeResult r;
@@ -70,16 +116,21 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   r.radiance = make_vec3(0.0f, 0.0f, 0.0f);
   vec3 direction = xyz(ray.direction);
   vec3 throughput = xyz(ray.throughput);
-  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays: nothing to weigh against
+  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays and delta samples: nothing to weigh against
   uint rng = ray.state.x;
   uint bounce = ray.state.y;
   uint maxBounces = params.mode.x;
   uint mode = params.mode.y;
   uint lightCount = params.mode.w;
+  uint bsdfFlags = params.shading.x;
+  uint lightSelection = params.shading.z;
 
   SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t);
-  GpuMaterial m = WP_MATERIAL(s.material);
+  GpuMaterial m = texturedMaterial(WP_TEXTURE_BUFFER_ARGS WP_MATERIAL(s.material), s);
   vec3 wo = -direction;
+  if (dot(s.normal, wo) < 0.0f) {
+    throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
+  }
 
   vec3 emission = emittedRadiance(xyz(m.emission), m.emission.w != 0.0f, s.normal, wo);
   if (maxComponent(emission) > 0.0f) {
@@ -89,17 +140,32 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       if (mode == WP_MODE_NEE) {
         weight = 0.0f;
       } else if (mode == WP_MODE_MIS) {
-        float pdf = (1.0f - params.sky.transform.z) * lightPdf(WP_LIGHT(s.light), t * t, dot(s.normal, wo));
-        weight = balanceHeuristic(bsdfPdfOfRay, pdf);
+        // The selection probability as seen from the previous vertex (the ray's origin),
+        // times the chance that next event estimation chose the triangles over the sky.
+        GpuLight light = WP_LIGHT(s.light);
+        float selection = (1.0f - params.sky.transform.z) *
+                          lightSelectionProbability(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, light,
+                                                    xyz(ray.origin));
+        weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
       }
     }
     r.radiance = throughput * emission * weight;
+    if (bounce > 0u) {
+      r.radiance = clampedContribution(params, r.radiance);
+    }
   }
   if (bounce > maxBounces) {
     return r;
   }
 
-  Frame frame = makeFrame(dot(s.normal, wo) >= 0.0f ? s.normal : -s.normal);
+  // Smooth shading: the BSDF sees the interpolated normal, but whether a direction is
+  // reflected or transmitted is decided by the geometric normal, so no light leaks through
+  // the surface (a direction whose two verdicts differ contributes nothing, to every
+  // strategy alike). Where wo itself is on different sides of the two, the vertex normals
+  // are unusable there and the point shades flat.
+  float woSide = dot(s.normal, wo);
+  vec3 shadingNormal = woSide * dot(s.shadingNormal, wo) > 0.0f ? s.shadingNormal : s.normal;
+  Frame frame = makeFrame(shadingNormal);
   vec3 woLocal = frameToLocal(frame, wo);
 
   float skyChoice = params.sky.transform.z;
@@ -118,31 +184,41 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       ls.pdf *= skyChoice;
     } else {
       float u = min((u0 - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, s.position, make_vec3(u, u1, u2));
+      ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, s.position, make_vec3(u, u1, u2));
       ls.pdf *= 1.0f - skyChoice;
     }
-    vec3 wiLocal = frameToLocal(frame, ls.direction);
-    vec3 unshadowed = ls.pdf > 0.0f ? bsdfEvalCos(m, woLocal, wiLocal) * ls.radiance : make_vec3(0.0f, 0.0f, 0.0f);
+    BsdfEval e = noEval();
+    if (ls.pdf > 0.0f) {
+      vec3 wiLocal = frameToLocal(frame, ls.direction);
+      if (sidesAgree(woSide, dot(s.normal, ls.direction), woLocal.z * wiLocal.z)) {
+        e = evalBsdf(m, woLocal, wiLocal, bsdfFlags);
+      }
+    }
+    vec3 unshadowed = e.fCos * ls.radiance;
     if (maxComponent(unshadowed) > 0.0f) {
-      float weight = mode == WP_MODE_MIS ? balanceHeuristic(ls.pdf, bsdfPdf(m, woLocal, wiLocal)) : 1.0f;
+      float weight = mode == WP_MODE_MIS ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
       vec3 origin = offsetRayOrigin(s.position, s.normal, ls.direction);
       r.shadow.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
       r.shadow.direction = make_vec4(ls.direction.x, ls.direction.y, ls.direction.z,
                                      ls.distance * WP_SHADOW_RAY_SHORTEN);
-      vec3 c = throughput * unshadowed * (weight / ls.pdf);
+      vec3 c = clampedContribution(params, throughput * unshadowed * (weight / ls.pdf));
       r.shadow.contribution = make_vec4(c.x, c.y, c.z, 0.0f);
       r.flags |= WP_SHADE_SHADOW;
     }
   }
 
   // From the last vertex a ray is still traced, only to collect emission the light sample
-  // did not cover (MIS) or all of it (BSDF sampling); with NEE alone it would find nothing.
-  if (bounce < maxBounces || mode != WP_MODE_NEE) {
-    rng = rngNext(rng);
-    float u0 = rngFloat(rng);
-    rng = rngNext(rng);
-    float u1 = rngFloat(rng);
-    BsdfSample bs = bsdfSample(m, woLocal, make_vec2(u0, u1));
+  // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
+  // with NEE alone, what only a delta lobe reaches.
+  rng = rngNext(rng);
+  float u0 = rngFloat(rng);
+  rng = rngNext(rng);
+  float u1 = rngFloat(rng);
+  rng = rngNext(rng);
+  float u2 = rngFloat(rng);
+  MaterialSample bs = sampleBsdf(m, woLocal, make_vec3(u0, u1, u2), bsdfFlags);
+  bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
+  if (bounce < maxBounces || mode != WP_MODE_NEE || isDelta) {
     vec3 nextThroughput = throughput * bs.weight;
     float survival = 1.0f;
     if (bounce >= params.mode.z) {
@@ -153,12 +229,14 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
         survival = 0.0f;
       }
     }
-    if (bs.pdf > 0.0f && survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
-      vec3 wi = frameToWorld(frame, bs.wi);
+    vec3 wi = frameToWorld(frame, bs.wi);
+    bool agrees = sidesAgree(woSide, dot(s.normal, wi), woLocal.z * bs.wi.z);
+    if (bs.pdf > 0.0f && agrees && survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
       vec3 origin = offsetRayOrigin(s.position, s.normal, wi);
       nextThroughput = nextThroughput / survival;
+      float rayPdf = isDelta ? 0.0f : bs.pdf;
       r.next.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
-      r.next.direction = make_vec4(wi.x, wi.y, wi.z, bs.pdf);
+      r.next.direction = make_vec4(wi.x, wi.y, wi.z, rayPdf);
       r.next.throughput = make_vec4(nextThroughput.x, nextThroughput.y, nextThroughput.z, 0.0f);
       r.next.state = make_uvec4(rng, bounce + 1u, 0u, 0u);
       r.flags |= WP_SHADE_EXTEND;

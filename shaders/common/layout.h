@@ -31,15 +31,22 @@ WP_BEGIN
 #define WP_BINDING_ENV_RADIANCE 13  // vec4[] (texels): sky radiance per texel (environment.h)
 #define WP_BINDING_ENV_MARGINAL 14  // float[] (texels): the sky's row distribution
 #define WP_BINDING_ENV_CONDITIONAL 15  // float[] (texels): its column distributions
-#define WP_BINDING_RAYS_READ 16     // the rays buffer again, as texels (Vulkan only)
-#define WP_BINDING_HITS_READ 17     // the hits buffer again, as texels (Vulkan only)
-#define WP_BINDING_SHADOW_RAYS_READ 18  // the shadow-ray buffer again, as texels (Vulkan only)
-#define WP_BINDING_COUNT 19u
+#define WP_BINDING_TRIANGLE_SHADING 16  // GpuTriangleShading[] (texels), parallel to the triangles
+#define WP_BINDING_TEXTURES 17      // GpuTexture[] (texels)
+#define WP_BINDING_TEXELS 18        // uint[] (texels): RGBA8 texels of every texture, r in the low byte
+#define WP_BINDING_RAYS_READ 19     // the rays buffer again, as texels (Vulkan only)
+#define WP_BINDING_HITS_READ 20     // the hits buffer again, as texels (Vulkan only)
+#define WP_BINDING_SHADOW_RAYS_READ 21  // the shadow-ray buffer again, as texels (Vulkan only)
+#define WP_BINDING_COUNT 22u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
 #define WP_MODE_NEE 1u
 #define WP_MODE_BSDF 2u
+
+// Light selection for next event estimation (RenderParams.shading.z).
+#define WP_LIGHT_SELECTION_POWER 0u        // alias table by emitted power
+#define WP_LIGHT_SELECTION_SOLID_ANGLE 1u  // by subtended solid angle times luminance (lights.h)
 
 // GpuInstance.info.x: what the instance is.
 #define WP_INSTANCE_MESH 0u
@@ -56,6 +63,9 @@ WP_BEGIN
 #define WP_PLANE(i) planes[i]
 #define WP_MATERIAL(i) materials[i]
 #define WP_LIGHT(i) lights[i]
+#define WP_TRIANGLE_SHADING(i) triangleShading[i]
+#define WP_TEXTURE(i) textures[i]
+#define WP_TEXEL_WORD(i) texels[i]
 #endif
 
 // BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
@@ -77,6 +87,27 @@ WP_STRUCT(GpuTriangle)
   uvec4 info;  // x: material index, y: emitter ordinal within its mesh or WP_INVALID
 WP_STRUCT_END(GpuTriangle)
 
+// Shading data of the GpuTriangle at the same index, read only when shading a hit, so the
+// traversal's triangle records stay 64 bytes: 64 bytes.
+WP_STRUCT(GpuTriangleShading)
+  vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0, w: u0;
+  vec4 normal1;  // all three normals zero: shade with the geometric normal (flat); w: u1
+  vec4 normal2;  // w: u2
+  vec4 v;        // xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
+WP_STRUCT_END(GpuTriangleShading)
+
+// GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
+#define WP_TEXTURE_WRAP_REPEAT 0u
+#define WP_TEXTURE_WRAP_CLAMP 1u
+#define WP_TEXTURE_WRAP_MIRROR 2u
+#define WP_TEXTURE_SRGB 16u     // texels are sRGB-encoded colour (decoded before filtering)
+#define WP_TEXTURE_NEAREST 32u  // nearest texel instead of bilinear
+
+// A texture's header: 16 bytes.
+WP_STRUCT(GpuTexture)
+  uvec4 info;  // x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
+WP_STRUCT_END(GpuTexture)
+
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
 WP_STRUCT(GpuInstance)
   vec4 worldToObject0;  // rows of the 3x4 world-to-object matrix
@@ -92,9 +123,19 @@ WP_STRUCT(GpuPlane)
   uvec4 info;           // x: material index
 WP_STRUCT_END(GpuPlane)
 
+// GpuMaterial.info.x: which BSDF the material has.
+#define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
+#define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
+
+// A surface material, 80 bytes.
 WP_STRUCT(GpuMaterial)
-  vec4 baseColor;  // rgb: linear albedo, a: alpha
-  vec4 emission;   // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
+  vec4 baseColor;    // rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
+  vec4 emission;     // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
+  vec4 surface;      // x: metallic, y: perceptual roughness, z: ior, w: transmission
+  vec4 attenuation;  // rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
+                     // (WP_FLT_MAX: no absorption)
+  uvec4 info;        // x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness
+                     // texture (WP_INVALID: none), w: unused
 WP_STRUCT_END(GpuMaterial)
 
 // Emissive triangle in world space, with its alias-table entry for power-proportional
@@ -125,6 +166,8 @@ WP_STRUCT(RenderParams)
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
                         // w: number of lights
   uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
+  uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
+                        // z: WP_LIGHT_SELECTION_*, w: unused
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

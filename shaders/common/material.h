@@ -55,7 +55,7 @@ WP_FN BsdfEval evalMaterial(SurfaceMaterial m, vec3 wo, vec3 wi, uint flags) {
     e = addWeighted(e, evalGlass(m.baseColor, alpha, m.ior, flags, wo, wi), w.glass);
   }
   if (w.plastic > 0.0f) {
-    e = addWeighted(e, evalPlastic(m.baseColor, m.roughness, m.ior, wo, wi), w.plastic);
+    e = addWeighted(e, evalPlastic(m.baseColor, m.roughness, m.ior, flags, wo, wi), w.plastic);
   }
   return e;
 }
@@ -88,7 +88,7 @@ WP_FN MaterialSample sampleMaterial(SurfaceMaterial m, vec3 wo, vec3 u, uint fla
       s = sampleGlass(m.baseColor, alpha, m.ior, flags, wo, make_vec3(rescaleUniform(x, transmission), u.y, u.z));
     } else {
       chosen = w.plastic;
-      s = samplePlastic(m.baseColor, m.roughness, m.ior, wo,
+      s = samplePlastic(m.baseColor, m.roughness, m.ior, flags, wo,
                         make_vec3(rescaleUniform(x - transmission, 1.0f - transmission), u.y, u.z));
     }
   }

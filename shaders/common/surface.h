@@ -8,8 +8,8 @@
 WP_BEGIN
 
 #ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuTriangle) triangles, WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes,
-#define WP_SURFACE_BUFFER_ARGS triangles, instances, planes,
+#define WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuTriangle) triangles, WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes, WP_GLOBAL_PTR(GpuTriangleShading) triangleShading,
+#define WP_SURFACE_BUFFER_ARGS triangles, instances, planes, triangleShading,
 #else
 #define WP_SURFACE_BUFFERS
 #define WP_SURFACE_BUFFER_ARGS
@@ -17,7 +17,10 @@ WP_BEGIN
 
 WP_STRUCT(SurfaceHit)
   vec3 position;
-  vec3 normal;    // unit geometric normal, front side (counter-clockwise winding, outside)
+  vec3 normal;         // unit geometric normal, front side (counter-clockwise winding, outside)
+  vec3 shadingNormal;  // unit interpolated vertex normal on the front side; `normal` if none
+  vec2 uv;             // TEXCOORD_0 at the hit, if hasUv
+  bool hasUv;
   uint material;
   uint light;     // index into the light buffer, WP_INVALID if not a sampled light
 WP_STRUCT_END(SurfaceHit)
@@ -36,20 +39,42 @@ WP_FN vec3 pointToObject(GpuInstance inst, vec3 p) {
   return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
 }
 
+// Barycentrics (of vertices 1 and 2) of an object-space point on the triangle's plane,
+// recomputed here rather than carried from the traversal, which stays lean.
+WP_FN vec2 barycentricsAt(GpuTriangle tri, vec3 p) {
+  vec3 e1 = make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z);
+  vec3 e2 = make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z);
+  vec3 d = p - make_vec3(tri.v0.x, tri.v0.y, tri.v0.z);
+  float d00 = dot(e1, e1);
+  float d01 = dot(e1, e2);
+  float d11 = dot(e2, e2);
+  float d20 = dot(d, e1);
+  float d21 = dot(d, e2);
+  float denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > 0.0f)) {
+    return make_vec2(0.0f, 0.0f);
+  }
+  return make_vec2((d11 * d20 - d01 * d21) / denominator, (d00 * d21 - d01 * d20) / denominator);
+}
+
 // `instanceField` and `primitive` are HitRecord.hit.y and .z of a hit (not a miss).
 WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive, vec3 position) {
   SurfaceHit s;
   s.position = position;
   s.light = WP_INVALID;
+  s.uv = make_vec2(0.0f, 0.0f);
+  s.hasUv = false;
   if ((instanceField & WP_HIT_PLANE) != 0u) {
     GpuPlane plane = WP_PLANE(instanceField & ~WP_HIT_PLANE);
     s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
+    s.shadingNormal = s.normal;
     s.material = plane.info.x;
     return s;
   }
   GpuInstance inst = WP_INSTANCE(instanceField);
   if (inst.info.x == WP_INSTANCE_SPHERE) {
     s.normal = normalToWorld(inst, pointToObject(inst, position));
+    s.shadingNormal = s.normal;
     s.material = inst.info.y;
     return s;
   }
@@ -57,6 +82,21 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   vec3 e1 = make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z);
   vec3 e2 = make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z);
   s.normal = normalToWorld(inst, cross(e1, e2));
+  s.shadingNormal = s.normal;
+  GpuTriangleShading shading = WP_TRIANGLE_SHADING(primitive);
+  vec3 n0 = make_vec3(shading.normal0.x, shading.normal0.y, shading.normal0.z);
+  vec3 n1 = make_vec3(shading.normal1.x, shading.normal1.y, shading.normal1.z);
+  vec3 n2 = make_vec3(shading.normal2.x, shading.normal2.y, shading.normal2.z);
+  vec2 b = barycentricsAt(tri, pointToObject(inst, position));
+  vec3 n = n0 * (1.0f - b.x - b.y) + n1 * b.x + n2 * b.y;
+  s.hasUv = shading.v.w != 0.0f;
+  s.uv = make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
+         make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
+  if (dot(n, n) > 1e-12f) {
+    // Vertex normals on the back of the face (bad data) are taken as facing the front.
+    vec3 world = normalToWorld(inst, n);
+    s.shadingNormal = dot(world, s.normal) >= 0.0f ? world : -world;
+  }
   s.material = tri.info.x;
   s.light = tri.info.y == WP_INVALID ? WP_INVALID : inst.info.z + tri.info.y;
   return s;

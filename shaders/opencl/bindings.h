@@ -7,7 +7,7 @@
 // host sets each buffer once for all kernels; the pass constants follow, by value. The
 // bindings through which Vulkan reads a queue again as texels have no argument here: the
 // queue's own pointer reads it.
-#define WP_ARG_PASS (WP_BINDING_ENV_CONDITIONAL + 1u)
+#define WP_ARG_PASS (WP_BINDING_TEXELS + 1u)
 
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 #include "common/layout.h"
@@ -18,7 +18,9 @@
       __global const GpuMaterial *materials, __global const GpuLight *lights, __global PathRay *rays,   \
       __global HitRecord *hits, __global ShadowRay *shadowRays, __global float4 *pathRadiance,         \
       __global uint *counters, __global float4 *accumulation, __global const float4 *envRadiance,     \
-      __global const float *envMarginal, __global const float *envConditional, PassConstants pc
+      __global const float *envMarginal, __global const float *envConditional,                         \
+      __global const GpuTriangleShading *triangleShading, __global const GpuTexture *textures,          \
+      __global const uint *texels, PassConstants pc
 
 // Every dispatch runs workgroups of WP_WORKGROUP_SIZE, which lets the compiler specialise.
 #define WP_KERNEL __kernel __attribute__((reqd_work_group_size(WP_WORKGROUP_SIZE, 1, 1)))

@@ -17,6 +17,9 @@ layout(binding = WP_BINDING_LIGHTS) uniform usamplerBuffer lightTexels;
 layout(binding = WP_BINDING_ENV_RADIANCE) uniform usamplerBuffer skyRadianceTexels;
 layout(binding = WP_BINDING_ENV_MARGINAL) uniform usamplerBuffer skyMarginalTexels;
 layout(binding = WP_BINDING_ENV_CONDITIONAL) uniform usamplerBuffer skyConditionalTexels;
+layout(binding = WP_BINDING_TRIANGLE_SHADING) uniform usamplerBuffer triangleShadingTexels;
+layout(binding = WP_BINDING_TEXTURES) uniform usamplerBuffer textureTexels;
+layout(binding = WP_BINDING_TEXELS) uniform usamplerBuffer texelTexels;
 layout(binding = WP_BINDING_RAYS_READ) uniform usamplerBuffer rayTexels;
 layout(binding = WP_BINDING_HITS_READ) uniform usamplerBuffer hitTexels;
 layout(binding = WP_BINDING_SHADOW_RAYS_READ) uniform usamplerBuffer shadowRayTexels;
@@ -66,10 +69,31 @@ GpuPlane loadPlane(uint i) {
   return p;
 }
 
+GpuTriangleShading loadTriangleShading(uint i) {
+  GpuTriangleShading t;
+  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 4u, 0u);
+  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 4u, 1u);
+  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 4u, 2u);
+  t.v = WP_FLOATS(triangleShadingTexels, i, 4u, 3u);
+  return t;
+}
+
+GpuTexture loadTexture(uint i) {
+  GpuTexture t;
+  t.info = WP_UINTS(textureTexels, i, 1u, 0u);
+  return t;
+}
+
+// Four packed texels per RGBA32UI texel of the buffer.
+uint loadTexelWord(uint i) { return texelFetch(texelTexels, int(i >> 2u))[i & 3u]; }
+
 GpuMaterial loadMaterial(uint i) {
   GpuMaterial m;
-  m.baseColor = WP_FLOATS(materialTexels, i, 2u, 0u);
-  m.emission = WP_FLOATS(materialTexels, i, 2u, 1u);
+  m.baseColor = WP_FLOATS(materialTexels, i, 5u, 0u);
+  m.emission = WP_FLOATS(materialTexels, i, 5u, 1u);
+  m.surface = WP_FLOATS(materialTexels, i, 5u, 2u);
+  m.attenuation = WP_FLOATS(materialTexels, i, 5u, 3u);
+  m.info = WP_UINTS(materialTexels, i, 5u, 4u);
   return m;
 }
 
@@ -109,6 +133,9 @@ ShadowRay loadShadowRay(uint i) {
 #define WP_ENV_RADIANCE(i) WP_FLOATS(skyRadianceTexels, i, 1u, 0u)
 #define WP_ENV_MARGINAL(i) uintBitsToFloat(texelFetch(skyMarginalTexels, int(i)).x)
 #define WP_ENV_CONDITIONAL(i) uintBitsToFloat(texelFetch(skyConditionalTexels, int(i)).x)
+#define WP_TRIANGLE_SHADING(i) loadTriangleShading(i)
+#define WP_TEXTURE(i) loadTexture(i)
+#define WP_TEXEL_WORD(i) loadTexelWord(i)
 
 uint bounceParity() { return pc.pass.w & 1u; }
 

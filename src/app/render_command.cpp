@@ -76,6 +76,20 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "Light sampling: mis (light and BSDF sampling, balance heuristic), nee (light sampling only), "
                   "bsdf (BSDF sampling only)")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  // Shading switches (materials), off by default.
+  cmd->add_flag("--widen-roughness", s.widenRoughness,
+                "Sample rough glass from Walter et al.'s widened Beckmann lobe (pdfs follow: still unbiased)");
+  cmd->add_flag("--fixed-lobe-choice", s.fixedLobeChoice,
+                "For comparisons: plastic picks specular or diffuse 50/50 instead of by Fresnel (still unbiased)");
+  cmd->add_option("--clamp", s.contributionClamp,
+                  "Biased: clamp the luminance of each contribution but emission seen by the camera (0 = off)")
+      ->check(CLI::NonNegativeNumber);
+  static const std::map<std::string, LightSelection> selections = {{"power", LightSelection::Power},
+                                                                   {"solid-angle", LightSelection::SolidAngle}};
+  cmd->add_option("--light-selection", s.lightSelection,
+                  "How light sampling picks a light: power (alias table, the default) or solid-angle (subtended "
+                  "solid angle times luminance from the shading point; a pass over all lights per sample)")
+      ->transform(CLI::CheckedTransformer(selections, CLI::ignore_case));
   cmd->add_option("--rr-start", s.russianRouletteStart, "First bounce at which Russian roulette may end a path");
   cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds)")
       ->check(CLI::Range(64u, 4194240u));

@@ -154,6 +154,22 @@ struct PackedMesh {
   std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
 };
 
+// Vertex normals and TEXCOORD_0 of triangle t, zero where the mesh has none.
+gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
+  gpu::GpuTriangleShading shading{};
+  const uint32_t* corner = &mesh.indices[3 * t];
+  glm::vec4* normals[3] = {&shading.normal0, &shading.normal1, &shading.normal2};
+  for (int k = 0; k < 3; ++k) {
+    if (!mesh.normals.empty()) *normals[k] = glm::vec4(mesh.normals[corner[k]], 0.0f);
+    if (!mesh.uvs.empty()) {
+      normals[k]->w = mesh.uvs[corner[k]].x;
+      shading.v[k] = mesh.uvs[corner[k]].y;
+    }
+  }
+  shading.v.w = mesh.uvs.empty() ? 0.0f : 1.0f;
+  return shading;
+}
+
 // Builds the bottom-level BVH of `mesh` and appends its nodes, triangles and range to `out`;
 // adds the build time to out.bvhBuildSeconds and its triangle-weighted SAH cost to weightedSah.
 PackedMesh packMesh(const Scene& scene, const Mesh& mesh, GpuScene& out, double& weightedSah) {
@@ -195,6 +211,7 @@ PackedMesh packMesh(const Scene& scene, const Mesh& mesh, GpuScene& out, double&
     Triangle v = triangleOf(mesh, t);
     out.triangles.push_back({glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
                              glm::uvec4(mesh.materials[t], ordinal[t], 0u, 0u)});
+    out.triangleShading.push_back(shadingOf(mesh, t));
   }
   return packed;
 }
@@ -320,9 +337,22 @@ GpuScene packScene(const Scene& scene) {
   }
   packSky(scene, trianglePower, out);
 
+  for (const Texture& texture : scene.textures) {
+    const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
+    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u);
+    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags)});
+    out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
+  }
+  // The Vulkan texel view reads four texels per RGBA32UI element.
+  out.texels.resize((out.texels.size() + 3) / 4 * 4, 0u);
+  auto textureIndex = [](int index) { return index < 0 ? WP_INVALID : uint32_t(index); };
   for (const Material& material : scene.materials) {
-    out.materials.push_back({glm::vec4(material.baseColor, material.alpha),
-                             glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f)});
+    out.materials.push_back(
+        {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),
+         glm::vec4(material.metallic, material.roughness, material.ior, material.transmission),
+         glm::vec4(material.attenuationColor, material.attenuationDistance),
+         glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF,
+                    textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture), 0u)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

@@ -26,6 +26,9 @@ struct GpuScene {
   std::vector<gpu::BvhNode> nodes;
   // Object-space triangles of every mesh in mesh order, each mesh's in its BVH leaf order.
   std::vector<gpu::GpuTriangle> triangles;
+  std::vector<gpu::GpuTriangleShading> triangleShading;  // parallel to `triangles`
+  std::vector<gpu::GpuTexture> textures;
+  std::vector<uint32_t> texels;  // every texture's RGBA8 texels, padded to a multiple of 4
   // Mesh instances and spheres in top-level leaf order. Instances of meshes without
   // triangles and instances with a singular transform are left out.
   std::vector<gpu::GpuInstance> instances;

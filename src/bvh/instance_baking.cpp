@@ -32,6 +32,25 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
     for (const glm::vec3& p : mesh.positions) {
       baked.positions.push_back(glm::vec3(inst.objectToWorld * glm::vec4(p, 1.0f)));
     }
+    if (!mesh.normals.empty()) {
+      // Normals go through the inverse transpose; zero ones stay zero (flat shading).
+      glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(inst.objectToWorld)));
+      baked.normals.resize(base, glm::vec3(0.0f));
+      for (const glm::vec3& n : mesh.normals) {
+        glm::vec3 m = normalMatrix * n;
+        baked.normals.push_back(n == glm::vec3(0.0f) ? n : glm::normalize(m));
+      }
+    } else if (!baked.normals.empty()) {
+      baked.normals.resize(baked.positions.size(), glm::vec3(0.0f));
+    }
+    if (!mesh.uvs.empty() || !baked.uvs.empty()) {
+      baked.uvs.resize(base, glm::vec2(0.0f));
+      if (mesh.uvs.empty()) {
+        baked.uvs.resize(baked.positions.size(), glm::vec2(0.0f));
+      } else {
+        baked.uvs.insert(baked.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
+      }
+    }
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1], c = mesh.indices[3 * t + 2];
       if (det < 0.0f) {

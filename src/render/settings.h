@@ -6,6 +6,7 @@
 namespace wp {
 
 enum class IntegratorMode { Mis, NeeOnly, BsdfOnly };
+enum class LightSelection { Power, SolidAngle };
 
 struct RenderSettings {
   uint32_t width = 512;
@@ -25,6 +26,20 @@ struct RenderSettings {
   // Next event estimation samples the sky by its luminance (environment.h); off, only rays
   // that BSDF sampling sends out find it (to show what sky sampling is worth).
   bool skySampling = true;
+
+  // Shading switches, all off by default (the default render is unbiased).
+  // Sample glass's Beckmann normals from Walter et al.'s widened lobe (bsdf_models.h:
+  // WP_BSDF_WIDEN_BECKMANN): the pdfs follow, so only the variance changes.
+  bool widenRoughness = false;
+  // For figures only: plastic picks its lobes 50/50 instead of by Fresnel (unbiased too;
+  // bsdf_models.h: WP_BSDF_FIXED_LOBE_CHOICE).
+  bool fixedLobeChoice = false;
+  // How next event estimation picks a light: by power (alias table), or by the solid angle
+  // each subtends from the shading point times its luminance (a pass over all lights).
+  LightSelection lightSelection = LightSelection::Power;
+  // Biased: scale each contribution but emission seen by the camera down to at most this
+  // luminance (0 = off), trading energy for fewer fireflies.
+  float contributionClamp = 0.0f;
 };
 
 }  // namespace wp

@@ -9,6 +9,7 @@
 #include "bvh/gpu_scene.h"
 #include "render/camera_lens.h"
 #include "scene/scene.h"
+#include "shaders/common/bsdf_models.h"
 
 namespace wp {
 
@@ -29,6 +30,11 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
   p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, uint32_t(gpuScene.instances.size()),
                         maxPaths);
+  uint32_t bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
+                       (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
+  uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
+                                                                                  : WP_LIGHT_SELECTION_POWER;
+  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection, 0u);
   return p;
 }
 

@@ -96,11 +96,12 @@ const tinygltf::Accessor& lookUp(const Context& ctx, int index, const std::strin
 
 }  // namespace
 
-std::vector<glm::vec3> readPositions(const Context& ctx, int index, const std::string& where) {
-  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "POSITION");
+std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int index, const std::string& where,
+                                         const char* attribute) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, attribute);
   if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || accessor.type != TINYGLTF_TYPE_VEC3) {
     fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
-         std::string("POSITION must be FLOAT VEC3, not ") + componentName(accessor.componentType) + " " +
+         std::string(attribute) + " must be FLOAT VEC3, not " + componentName(accessor.componentType) + " " +
              typeName(accessor.type) + "; re-export the scene without mesh quantization");
   }
   const ElementRange range = locate(ctx, index, where, sizeof(glm::vec3));
@@ -110,12 +111,31 @@ std::vector<glm::vec3> readPositions(const Context& ctx, int index, const std::s
     const glm::vec3& p = positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       fail(ctx, where,
-           "vertex " + std::to_string(i) + " of the POSITION accessor " + std::to_string(index) +
+           "vertex " + std::to_string(i) + " of the " + attribute + " accessor " + std::to_string(index) +
                " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
                "); re-export the file");
     }
   }
   return positions;
+}
+
+std::vector<glm::vec2> readTexCoords(const Context& ctx, int index, const std::string& where) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "TEXCOORD_0");
+  if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || accessor.type != TINYGLTF_TYPE_VEC2) {
+    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
+         std::string("TEXCOORD_0 must be FLOAT VEC2, not ") + componentName(accessor.componentType) + " " +
+             typeName(accessor.type) + "; re-export the scene without mesh quantization");
+  }
+  const ElementRange range = locate(ctx, index, where, sizeof(glm::vec2));
+  std::vector<glm::vec2> uvs(range.count);
+  for (size_t i = 0; i < range.count; ++i) {
+    std::memcpy(&uvs[i], range.first + i * range.stride, sizeof(glm::vec2));
+    if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
+      fail(ctx, where, "vertex " + std::to_string(i) + " of the TEXCOORD_0 accessor " + std::to_string(index) +
+                           " is not finite; re-export the file");
+    }
+  }
+  return uvs;
 }
 
 std::vector<uint32_t> readIndices(const Context& ctx, int index, const std::string& where) {

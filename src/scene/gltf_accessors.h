@@ -14,11 +14,16 @@ namespace wp::gltf {
 // Reads a FLOAT VEC3 accessor, honouring the accessor's and buffer view's byteOffset and
 // the view's byteStride. Throws, naming `where` and the accessor, when the index does not
 // exist, the type is wrong, the accessor is sparse or has no buffer view, any element lies
-// outside its buffer view or buffer, or a value is not finite.
-std::vector<glm::vec3> readPositions(const Context& ctx, int accessor, const std::string& where);
+// outside its buffer view or buffer, or a value is not finite. `attribute` names the
+// primitive attribute in messages (POSITION, NORMAL).
+std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int accessor, const std::string& where,
+                                         const char* attribute);
+
+// Reads a FLOAT VEC2 accessor (TEXCOORD_0) with the same checks as readVec3Attribute.
+std::vector<glm::vec2> readTexCoords(const Context& ctx, int accessor, const std::string& where);
 
 // Reads a SCALAR accessor of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, with the same
-// checks as readPositions (the values themselves are checked by the caller).
+// checks as readVec3Attribute (the values themselves are checked by the caller).
 std::vector<uint32_t> readIndices(const Context& ctx, int accessor, const std::string& where);
 
 }  // namespace wp::gltf

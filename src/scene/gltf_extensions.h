@@ -9,8 +9,11 @@
 namespace wp::gltf {
 
 // Every extension the loader implements. Add an entry here when the loader learns one.
-inline constexpr std::array<std::string_view, 1> kSupportedExtensions{
+inline constexpr std::array<std::string_view, 4> kSupportedExtensions{
     "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+    "KHR_materials_volume",
 };
 
 // Throws when extensionsRequired names an extension outside kSupportedExtensions; warns

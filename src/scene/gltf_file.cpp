@@ -6,10 +6,13 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <stb_image.h>
 
 #include "core/error.h"
 #include "core/log.h"
@@ -98,9 +101,26 @@ bool hasGlbExtension(const fs::path& file) {
   return ext == ".glb";
 }
 
-// Images are kept undecoded: textures are not used yet, and a broken image must not stop
-// the geometry from loading.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Decodes every image (file, data URI or .glb buffer view alike: tinygltf hands over the
+// bytes) into RGBA8 with stb_image; one that does not decode fails the load, naming it.
+bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void*) {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> pixels(
+      stbi_load_from_memory(bytes, size, &width, &height, &channels, 4), &stbi_image_free);
+  if (!pixels) {
+    *err += "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'") +
+            " cannot be decoded (" + stbi_failure_reason() + "); use PNG or JPEG";
+    return false;
+  }
+  image->width = width;
+  image->height = height;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(pixels.get(), pixels.get() + size_t(width) * size_t(height) * 4);
   return true;
 }
 
@@ -129,7 +149,7 @@ tinygltf::Model parseGltfFile(const fs::path& file) {
   }
 
   tinygltf::TinyGLTF parser;
-  parser.SetImageLoader(skipImage, nullptr);
+  parser.SetImageLoader(decodeImage, nullptr);
   tinygltf::Model model;
   std::string err;
   std::string warnings;

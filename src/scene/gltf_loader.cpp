@@ -71,7 +71,7 @@ public:
       : ctx_(ctx), defaultSky_(defaultSky), sceneMeshOf_(ctx.model.meshes.size(), kNotConverted) {}
 
   Scene build() {
-    scene_.materials = gltf::convertMaterials(ctx_);
+    scene_.materials = gltf::convertMaterials(ctx_, scene_.textures);
     defaultMaterial_ = static_cast<uint32_t>(scene_.materials.size());
     gltf::walkDefaultScene(ctx_, [this](size_t node, const glm::mat4& world) { visit(node, world); });
     if (scene_.instances.empty() && scene_.spheres.empty() && scene_.planes.empty()) {

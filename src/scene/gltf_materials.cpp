@@ -3,67 +3,142 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+
+#include "scene/gltf_textures.h"
 
 namespace wp::gltf {
 
 namespace {
 
 constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+constexpr const char* kIor = "KHR_materials_ior";
+constexpr const char* kTransmission = "KHR_materials_transmission";
+constexpr const char* kVolume = "KHR_materials_volume";
 
 bool allFinite(const std::vector<double>& values) {
   return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
 }
 
-float emissiveStrength(const Context& ctx, const tinygltf::Material& material, const std::string& where) {
-  const auto it = material.extensions.find(kEmissiveStrength);
-  if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has("emissiveStrength")) {
-    return 1.0f;  // the extension's default
+// The extension's object on `material`, or an empty value when it is absent.
+const tinygltf::Value& extensionOf(const tinygltf::Material& material, const char* name) {
+  static const tinygltf::Value none;
+  const auto it = material.extensions.find(name);
+  return it == material.extensions.end() || !it->second.IsObject() ? none : it->second;
+}
+
+// `extension.key` as a number in [lo, hi] (`range` says so to the user), `fallback` where absent.
+double readNumber(const Context& ctx, const tinygltf::Material& material, const char* extension, const char* key,
+                  double fallback, double lo, double hi, const char* range, const std::string& where) {
+  const tinygltf::Value& object = extensionOf(material, extension);
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& value = object.Get(key);
+  const double number = value.IsNumber() ? value.GetNumberAsDouble() : std::nan("");
+  if (!(number >= lo && number <= hi)) {
+    fail(ctx, where,
+         std::string(extension) + "." + key + " must be a number " + range + "; fix the material");
   }
-  const tinygltf::Value& value = it->second.Get("emissiveStrength");
-  const double strength = value.IsNumber() ? value.GetNumberAsDouble() : -1.0;
-  if (!std::isfinite(strength) || strength < 0.0) {
-    fail(ctx, where, std::string(kEmissiveStrength) + ".emissiveStrength must be a number >= 0; fix the material");
+  return number;
+}
+
+glm::vec3 readColor(const Context& ctx, const tinygltf::Material& material, const char* extension, const char* key,
+                    const std::string& where) {
+  const tinygltf::Value& object = extensionOf(material, extension);
+  if (!object.Has(key)) return glm::vec3(1.0f);
+  const tinygltf::Value& value = object.Get(key);
+  glm::vec3 color(-1.0f);
+  if (value.IsArray() && value.ArrayLen() == 3) {
+    for (int c = 0; c < 3; ++c) {
+      if (value.Get(c).IsNumber()) color[c] = static_cast<float>(value.Get(c).GetNumberAsDouble());
+    }
   }
-  return static_cast<float>(strength);
+  if (!(glm::all(glm::greaterThanEqual(color, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(color, glm::vec3(1.0f))))) {
+    fail(ctx, where, std::string(extension) + "." + key + " must be 3 numbers in [0, 1]; fix the material");
+  }
+  return color;
+}
+
+// extras.wavepath.bsdf: "lambert" marks an ideal diffuse surface, which glTF cannot say (its
+// dielectric always has a specular coat); the Cornell box is Lambertian like its reference.
+Material::Bsdf readBsdf(const Context& ctx, const tinygltf::Material& material, const std::string& where) {
+  if (!material.extras.Has("wavepath")) return Material::Bsdf::Gltf;
+  const tinygltf::Value& extras = material.extras.Get("wavepath");
+  const tinygltf::Value& bsdf = extras.IsObject() && extras.Has("bsdf") ? extras.Get("bsdf") : tinygltf::Value();
+  if (!bsdf.IsString() || bsdf.Get<std::string>() != "lambert") {
+    fail(ctx, where, "a material's extras.wavepath must be {\"bsdf\": \"lambert\"}; fix the material's extras");
+  }
+  return Material::Bsdf::Lambert;
 }
 
 Material convert(const Context& ctx, const tinygltf::Material& material, size_t index) {
   const std::string where = describe("material", index, material.name);
-  const std::vector<double>& base = material.pbrMetallicRoughness.baseColorFactor;
+  const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
+  const std::vector<double>& base = pbr.baseColorFactor;
   const std::vector<double>& emissive = material.emissiveFactor;
-  if (base.size() != 4 || emissive.size() != 3 || !allFinite(base) || !allFinite(emissive)) {
-    fail(ctx, where, "baseColorFactor needs 4 finite numbers and emissiveFactor 3; fix the material");
+  if (base.size() != 4 || emissive.size() != 3 || !allFinite(base) || !allFinite(emissive) ||
+      !std::isfinite(pbr.metallicFactor) || !std::isfinite(pbr.roughnessFactor)) {
+    fail(ctx, where,
+         "baseColorFactor needs 4 finite numbers, emissiveFactor 3, metallicFactor and roughnessFactor one; fix the "
+         "material");
   }
   Material out;
   out.name = material.name;
+  out.bsdf = readBsdf(ctx, material, where);
   // glTF limits the factors to [0, 1]; an albedo above 1 would create energy.
   out.baseColor = glm::clamp(glm::vec3(base[0], base[1], base[2]), 0.0f, 1.0f);
   out.alpha = std::clamp(static_cast<float>(base[3]), 0.0f, 1.0f);
+  out.metallic = std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f);
+  out.roughness = std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f);
+  // KHR_materials_ior allows 0 for "no refraction"; wavepath's glass needs an index >= 1.
+  out.ior = static_cast<float>(readNumber(ctx, material, kIor, "ior", 1.5, 1.0, 10.0, "in [1, 10]", where));
+  out.transmission =
+      static_cast<float>(readNumber(ctx, material, kTransmission, "transmissionFactor", 0.0, 0.0, 1.0, "in [0, 1]", where));
+  out.attenuationColor = readColor(ctx, material, kVolume, "attenuationColor", where);
+  out.attenuationDistance = static_cast<float>(readNumber(ctx, material, kVolume, "attenuationDistance",
+                                                          std::numeric_limits<float>::max(), 1e-30,
+                                                          std::numeric_limits<float>::max(), "> 0", where));
   out.emission = glm::max(glm::vec3(emissive[0], emissive[1], emissive[2]), 0.0f) *
-                 emissiveStrength(ctx, material, where);
+                 static_cast<float>(readNumber(ctx, material, kEmissiveStrength, "emissiveStrength", 1.0, 0.0,
+                                               std::numeric_limits<double>::max(), ">= 0", where));
   out.doubleSided = material.doubleSided;
   return out;
 }
 
-bool hasTexture(const tinygltf::Material& material) {
-  return material.pbrMetallicRoughness.baseColorTexture.index >= 0 || material.emissiveTexture.index >= 0 ||
-         material.normalTexture.index >= 0 || material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0;
+// Reads the base colour and metallic-roughness textures into `table`; returns whether the
+// material has textures that wavepath ignores (emissive, normal, occlusion, or a texture on
+// another TEXCOORD set than 0).
+bool readTextures(const tinygltf::Material& material, const std::string& where,
+                  TextureTable& table, Material& out) {
+  bool ignored = material.emissiveTexture.index >= 0 || material.normalTexture.index >= 0 ||
+                 material.occlusionTexture.index >= 0;
+  const tinygltf::TextureInfo& base = material.pbrMetallicRoughness.baseColorTexture;
+  if (base.index >= 0 && base.texCoord == 0) {
+    out.baseColorTexture = table.add(base.index, true, where);
+  }
+  const tinygltf::TextureInfo& metallicRoughness = material.pbrMetallicRoughness.metallicRoughnessTexture;
+  if (metallicRoughness.index >= 0 && metallicRoughness.texCoord == 0) {
+    out.metallicRoughnessTexture = table.add(metallicRoughness.index, false, where);
+  }
+  return ignored || (base.index >= 0 && base.texCoord != 0) ||
+         (metallicRoughness.index >= 0 && metallicRoughness.texCoord != 0);
 }
 
 }  // namespace
 
-std::vector<Material> convertMaterials(const Context& ctx) {
+std::vector<Material> convertMaterials(const Context& ctx, std::vector<Texture>& textures) {
   std::vector<Material> materials;
-  size_t textured = 0;
+  TextureTable table(ctx, textures);
+  size_t ignoring = 0;
   for (size_t i = 0; i < ctx.model.materials.size(); ++i) {
-    materials.push_back(convert(ctx, ctx.model.materials[i], i));
-    textured += hasTexture(ctx.model.materials[i]) ? 1 : 0;
+    const tinygltf::Material& material = ctx.model.materials[i];
+    materials.push_back(convert(ctx, material, i));
+    ignoring += readTextures(material, describe("material", i, material.name), table, materials.back()) ? 1 : 0;
   }
-  if (textured > 0) {
-    warnAt(ctx, "", std::to_string(textured) + " of " + std::to_string(materials.size()) +
-                        " materials have textures, which wavepath ignores for now: they render with their "
-                        "constant factors");
+  if (ignoring > 0) {
+    warnAt(ctx, "", std::to_string(ignoring) + " of " + std::to_string(materials.size()) +
+                        " materials have emissive, normal or occlusion textures, or textures on TEXCOORD_1 or "
+                        "later, which wavepath ignores: those render with their constant factors");
   }
   return materials;
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "scene/gltf_accessors.h"
@@ -41,6 +42,17 @@ std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, int mode) {
   return out;
 }
 
+// The accessors a primitive's vertices come from; primitives with the same pair share them.
+struct VertexSource {
+  int position = -1;
+  int normal = -1;  // -1: none
+  int uv = -1;      // TEXCOORD_0, -1: none
+
+  bool operator<(const VertexSource& other) const {
+    return std::tie(position, normal, uv) < std::tie(other.position, other.normal, other.uv);
+  }
+};
+
 class MeshBuilder {
 public:
   MeshBuilder(const Context& ctx, size_t meshIndex, uint32_t defaultMaterial)
@@ -76,7 +88,11 @@ private:
     if (position == primitive.attributes.end()) return skip(p, "no POSITION");
 
     const uint32_t material = materialOf(primitive, where);
-    const uint32_t vertexCount = addPositions(position->second, where);
+    const auto normal = primitive.attributes.find("NORMAL");
+    const auto uv = primitive.attributes.find("TEXCOORD_0");
+    const VertexSource source{position->second, normal == primitive.attributes.end() ? -1 : normal->second,
+                              uv == primitive.attributes.end() ? -1 : uv->second};
+    const uint32_t vertexCount = addVertices(source, where);
     std::vector<uint32_t> sequence;
     if (primitive.indices == -1) {
       sequence.resize(vertexCount);
@@ -96,7 +112,7 @@ private:
            "a TRIANGLES primitive needs a multiple of 3 vertices, not " + std::to_string(sequence.size()) +
                "; re-export the file");
     }
-    const uint32_t base = baseOf_.at(position->second);
+    const uint32_t base = baseOf_.at(source);
     for (uint32_t v : triangulate(sequence, mode)) mesh_.indices.push_back(base + v);
     mesh_.materials.resize(mesh_.indices.size() / 3, material);
   }
@@ -111,18 +127,49 @@ private:
     return static_cast<uint32_t>(primitive.material);
   }
 
-  // Appends the accessor's positions once per mesh (primitives often share one vertex
-  // buffer) and returns its vertex count.
-  uint32_t addPositions(int accessor, const std::string& where) {
-    if (baseOf_.count(accessor) == 0) {
-      const std::vector<glm::vec3> positions = readPositions(ctx_, accessor, where);
-      if (positions.size() > std::numeric_limits<uint32_t>::max() - mesh_.positions.size()) {
-        fail(ctx_, where, "the mesh has more vertices than 32-bit indices can address; split the mesh");
-      }
-      baseOf_[accessor] = static_cast<uint32_t>(mesh_.positions.size());
-      mesh_.positions.insert(mesh_.positions.end(), positions.begin(), positions.end());
+  // Appends the vertices of a POSITION (and NORMAL) accessor pair once per mesh (primitives
+  // often share one vertex buffer) and returns its vertex count.
+  uint32_t addVertices(const VertexSource& source, const std::string& where) {
+    const uint32_t count = static_cast<uint32_t>(ctx_.model.accessors[static_cast<size_t>(source.position)].count);
+    if (baseOf_.count(source) != 0) return count;
+    const std::vector<glm::vec3> positions = readVec3Attribute(ctx_, source.position, where, "POSITION");
+    if (positions.size() > std::numeric_limits<uint32_t>::max() - mesh_.positions.size()) {
+      fail(ctx_, where, "the mesh has more vertices than 32-bit indices can address; split the mesh");
     }
-    return static_cast<uint32_t>(ctx_.model.accessors[static_cast<size_t>(accessor)].count);
+    std::vector<glm::vec3> normals(positions.size(), glm::vec3(0.0f));
+    if (source.normal >= 0) {
+      normals = readVec3Attribute(ctx_, source.normal, where, "NORMAL");
+      if (normals.size() != positions.size()) {
+        fail(ctx_, where,
+             "NORMAL has " + std::to_string(normals.size()) + " vertices but POSITION " +
+                 std::to_string(positions.size()) + "; re-export the file");
+      }
+      // Exporters leave some normals unnormalized or zero; zero ones shade flat.
+      for (glm::vec3& n : normals) {
+        const float length = glm::length(n);
+        n = length > 0.0f ? n / length : glm::vec3(0.0f);
+      }
+      mesh_.normals.resize(mesh_.positions.size(), glm::vec3(0.0f));
+    }
+    baseOf_[source] = static_cast<uint32_t>(mesh_.positions.size());
+    mesh_.positions.insert(mesh_.positions.end(), positions.begin(), positions.end());
+    if (source.normal >= 0 || !mesh_.normals.empty()) {
+      mesh_.normals.insert(mesh_.normals.end(), normals.begin(), normals.end());
+    }
+    if (source.uv >= 0 || !mesh_.uvs.empty()) {
+      std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
+      if (source.uv >= 0) {
+        uvs = readTexCoords(ctx_, source.uv, where);
+        if (uvs.size() != positions.size()) {
+          fail(ctx_, where,
+               "TEXCOORD_0 has " + std::to_string(uvs.size()) + " vertices but POSITION " +
+                   std::to_string(positions.size()) + "; re-export the file");
+        }
+      }
+      mesh_.uvs.resize(mesh_.positions.size() - positions.size(), glm::vec2(0.0f));
+      mesh_.uvs.insert(mesh_.uvs.end(), uvs.begin(), uvs.end());
+    }
+    return count;
   }
 
   const Context& ctx_;
@@ -130,7 +177,7 @@ private:
   const uint32_t defaultMaterial_;
   std::string where_;
   Mesh mesh_;
-  std::map<int, uint32_t> baseOf_;  // POSITION accessor -> its first vertex in mesh_
+  std::map<VertexSource, uint32_t> baseOf_;  // accessors -> their first vertex in mesh_
   std::string skipped_;
   size_t skippedCount_ = 0;
 };

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -11,12 +12,24 @@
 
 namespace wp {
 
+// A glTF metallic-roughness material (defaults as in glTF), or an ideal diffuse one.
 struct Material {
+  enum class Bsdf { Gltf, Lambert };
+
   std::string name;
-  glm::vec3 baseColor{1.0f};  // linear RGB albedo
+  Bsdf bsdf = Bsdf::Gltf;     // Lambert: extras.wavepath.bsdf = "lambert", albedo baseColor
+  glm::vec3 baseColor{1.0f};  // linear RGB base colour
   float alpha = 1.0f;
+  float metallic = 1.0f;
+  float roughness = 1.0f;     // perceptual; alpha = roughness^2
+  float ior = 1.5f;           // KHR_materials_ior
+  float transmission = 0.0f;  // KHR_materials_transmission
+  glm::vec3 attenuationColor{1.0f};                             // KHR_materials_volume
+  float attenuationDistance = std::numeric_limits<float>::max();  // max: no absorption
   glm::vec3 emission{0.0f};  // emitted radiance: emissiveFactor * emissive_strength
   bool doubleSided = false;  // glTF doubleSided; a single-sided emitter emits on its front only
+  int baseColorTexture = -1;          // index into Scene::textures (sRGB), -1: none
+  int metallicRoughnessTexture = -1;  // index into Scene::textures (linear; B metallic, G roughness)
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
@@ -25,10 +38,28 @@ struct Material {
 struct Mesh {
   std::string name;
   std::vector<glm::vec3> positions;
+  // Unit shading normals per vertex (glTF NORMAL), or empty when no primitive has them;
+  // zero for the vertices of primitives without, which then shade flat.
+  std::vector<glm::vec3> normals;
+  // glTF TEXCOORD_0 per vertex, or empty when no primitive has it; zero where one lacks it.
+  std::vector<glm::vec2> uvs;
   std::vector<uint32_t> indices;    // 3 per triangle, counter-clockwise = front face
   std::vector<uint32_t> materials;  // one material index per triangle
 
   size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// A decoded image with its sampler: RGBA8, rows from the top, r in the low byte.
+struct Texture {
+  enum class Wrap { Repeat, Clamp, Mirror };
+
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint32_t> rgba;
+  Wrap wrapS = Wrap::Repeat;
+  Wrap wrapT = Wrap::Repeat;
+  bool nearest = false;  // magFilter NEAREST; otherwise bilinear (there are no mipmaps)
+  bool srgb = false;     // colour data (base colour), decoded to linear when sampled
 };
 
 struct MeshInstance {
@@ -73,6 +104,7 @@ struct Camera {
 
 struct Scene {
   std::vector<Material> materials;
+  std::vector<Texture> textures;
   std::vector<Mesh> meshes;
   std::vector<MeshInstance> instances;
   std::vector<Sphere> spheres;

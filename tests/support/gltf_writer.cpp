@@ -39,6 +39,13 @@ size_t append(std::vector<uint8_t>& buffer, const std::vector<T>& data) {
 std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::path& file) {
   std::vector<uint8_t> buffer;
   std::ostringstream views, accessors, meshes, nodes, materials;
+  // Each accessor has its own buffer view, at the same index.
+  size_t next = 0;
+  auto addView = [&](size_t offset, size_t length) {
+    views << (next ? "," : "") << "{\"buffer\":0,\"byteOffset\":" << offset << ",\"byteLength\":" << length << "}";
+    accessors << (next ? "," : "");
+    return next++;
+  };
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const TestMesh& mesh = scene.meshes[m];
     glm::vec3 lo(1e30f), hi(-1e30f);
@@ -46,17 +53,22 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
     }
-    size_t positionOffset = append(buffer, mesh.positions);
-    size_t indexOffset = append(buffer, mesh.indices);
-    const char* sep = m ? "," : "";
-    views << sep << "{\"buffer\":0,\"byteOffset\":" << positionOffset
-          << ",\"byteLength\":" << mesh.positions.size() * 12 << "},{\"buffer\":0,\"byteOffset\":" << indexOffset
-          << ",\"byteLength\":" << mesh.indices.size() * 4 << "}";
-    accessors << sep << "{\"bufferView\":" << 2 * m << ",\"componentType\":5126,\"count\":" << mesh.positions.size()
+    size_t position = addView(append(buffer, mesh.positions), mesh.positions.size() * 12);
+    accessors << "{\"bufferView\":" << position << ",\"componentType\":5126,\"count\":" << mesh.positions.size()
               << ",\"type\":\"VEC3\",\"min\":[" << lo.x << "," << lo.y << "," << lo.z << "],\"max\":[" << hi.x << ","
-              << hi.y << "," << hi.z << "]},{\"bufferView\":" << 2 * m + 1
-              << ",\"componentType\":5125,\"count\":" << mesh.indices.size() << ",\"type\":\"SCALAR\"}";
-    meshes << sep << "{\"primitives\":[{\"attributes\":{\"POSITION\":" << 2 * m << "},\"indices\":" << 2 * m + 1
+              << hi.y << "," << hi.z << "]}";
+    size_t index = addView(append(buffer, mesh.indices), mesh.indices.size() * 4);
+    accessors << "{\"bufferView\":" << index << ",\"componentType\":5125,\"count\":" << mesh.indices.size()
+              << ",\"type\":\"SCALAR\"}";
+    std::string attributes = "\"POSITION\":" + std::to_string(position);
+    if (!mesh.normals.empty()) {
+      size_t normal = addView(append(buffer, mesh.normals), mesh.normals.size() * 12);
+      accessors << "{\"bufferView\":" << normal << ",\"componentType\":5126,\"count\":" << mesh.normals.size()
+                << ",\"type\":\"VEC3\"}";
+      attributes += ",\"NORMAL\":" + std::to_string(normal);
+    }
+    const char* sep = m ? "," : "";
+    meshes << sep << "{\"primitives\":[{\"attributes\":{" << attributes << "},\"indices\":" << index
            << ",\"material\":" << mesh.material << "}]}";
     nodes << sep << "{\"mesh\":" << m << ",\"translation\":[" << mesh.translation.x << "," << mesh.translation.y
           << "," << mesh.translation.z << "]}";
@@ -66,11 +78,29 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
     float strength = std::max({mat.emission.x, mat.emission.y, mat.emission.z});
     glm::vec3 factor = strength > 0.0f ? mat.emission / strength : glm::vec3(0.0f);
     materials << (i ? "," : "") << "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[" << mat.baseColor.x << ","
-              << mat.baseColor.y << "," << mat.baseColor.z << ",1],\"metallicFactor\":0},\"emissiveFactor\":["
-              << factor.x << "," << factor.y << "," << factor.z << "],\"doubleSided\":"
-              << (mat.doubleSided ? "true" : "false");
+              << mat.baseColor.y << "," << mat.baseColor.z << ",1],\"metallicFactor\":" << mat.metallic
+              << ",\"roughnessFactor\":" << mat.roughness << "},\"emissiveFactor\":[" << factor.x << "," << factor.y
+              << "," << factor.z << "],\"doubleSided\":" << (mat.doubleSided ? "true" : "false");
+    if (mat.lambert) {
+      materials << ",\"extras\":{\"wavepath\":{\"bsdf\":\"lambert\"}}";
+    }
+    std::ostringstream extensions;
     if (strength > 0.0f) {
-      materials << ",\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":" << strength << "}}";
+      extensions << ",\"KHR_materials_emissive_strength\":{\"emissiveStrength\":" << strength << "}";
+    }
+    if (mat.ior != 1.5f) {
+      extensions << ",\"KHR_materials_ior\":{\"ior\":" << mat.ior << "}";
+    }
+    if (mat.transmission > 0.0f) {
+      extensions << ",\"KHR_materials_transmission\":{\"transmissionFactor\":" << mat.transmission << "}";
+    }
+    if (mat.attenuationDistance > 0.0f) {
+      extensions << ",\"KHR_materials_volume\":{\"attenuationDistance\":" << mat.attenuationDistance
+                 << ",\"attenuationColor\":[" << mat.attenuationColor.x << "," << mat.attenuationColor.y << ","
+                 << mat.attenuationColor.z << "]}";
+    }
+    if (!extensions.str().empty()) {
+      materials << ",\"extensions\":{" << extensions.str().substr(1) << "}";
     }
     materials << "}";
   }
@@ -78,7 +108,8 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
   size_t cameraNode = scene.meshes.size();
   std::ostringstream json;
   json.precision(9);
-  json << "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],"
+  json << "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_materials_emissive_strength\","
+       << "\"KHR_materials_ior\",\"KHR_materials_transmission\",\"KHR_materials_volume\"],"
        << "\"scene\":0,\"scenes\":[{\"nodes\":[";
   for (size_t i = 0; i <= cameraNode; ++i) {
     json << (i ? "," : "") << i;

@@ -14,10 +14,18 @@ struct TestMaterial {
   glm::vec3 baseColor{1.0f};
   glm::vec3 emission{0.0f};  // written as emissiveFactor / max * KHR_materials_emissive_strength
   bool doubleSided = false;
+  bool lambert = true;  // extras.wavepath.bsdf = "lambert"; false: the glTF material below
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  float ior = 1.5f;           // KHR_materials_ior, written when not 1.5
+  float transmission = 0.0f;  // KHR_materials_transmission, written when > 0
+  glm::vec3 attenuationColor{1.0f};
+  float attenuationDistance = 0.0f;  // KHR_materials_volume, written when > 0
 };
 
 struct TestMesh {
   std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // glTF NORMAL, written when not empty
   std::vector<uint32_t> indices;
   int material = 0;
   glm::vec3 translation{0.0f};

@@ -88,20 +88,23 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
   sceneBuffers_[3] = uploadVector(context, scene.planes);
   sceneBuffers_[4] = uploadVector(context, scene.materials);
   sceneBuffers_[5] = uploadVector(context, scene.lights);
-  skyBuffers_[0] = uploadVector(context, scene.skyRadiance);
-  skyBuffers_[1] = uploadVector(context, scene.skyMarginal);
-  skyBuffers_[2] = uploadVector(context, scene.skyConditional);
+  sceneBuffers_[6] = uploadVector(context, scene.skyRadiance);
+  sceneBuffers_[7] = uploadVector(context, scene.skyMarginal);
+  sceneBuffers_[8] = uploadVector(context, scene.skyConditional);
+  sceneBuffers_[9] = uploadVector(context, scene.triangleShading);
+  sceneBuffers_[10] = uploadVector(context, scene.textures);
+  sceneBuffers_[11] = uploadVector(context, scene.texels);
+  const uint32_t bindings[] = {WP_BINDING_NODES,           WP_BINDING_TRIANGLES,      WP_BINDING_INSTANCES,
+                               WP_BINDING_PLANES,          WP_BINDING_MATERIALS,      WP_BINDING_LIGHTS,
+                               WP_BINDING_ENV_RADIANCE,    WP_BINDING_ENV_MARGINAL,   WP_BINDING_ENV_CONDITIONAL,
+                               WP_BINDING_TRIANGLE_SHADING, WP_BINDING_TEXTURES,      WP_BINDING_TEXELS};
+  static_assert(sizeof(bindings) / sizeof(bindings[0]) == std::tuple_size_v<decltype(sceneBuffers_)>);
   sceneBytes_ = 0;
   uint64_t largest = 0;
   for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {
     sceneBytes_ += sceneBuffers_[i].size();
     largest = std::max(largest, sceneBuffers_[i].size());
-    bind(WP_BINDING_NODES + i, sceneBuffers_[i]);
-  }
-  for (uint32_t i = 0; i < skyBuffers_.size(); ++i) {
-    sceneBytes_ += skyBuffers_[i].size();
-    largest = std::max(largest, skyBuffers_[i].size());
-    bind(WP_BINDING_ENV_RADIANCE + i, skyBuffers_[i]);
+    bind(bindings[i], sceneBuffers_[i]);
   }
   checkMemory(sceneBytes_, largest, "scene");
 }

@@ -59,8 +59,7 @@ private:
   bool validate_;
 
   // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
-  std::array<OpenClBuffer, 6> sceneBuffers_;  // bindings WP_BINDING_NODES .. WP_BINDING_LIGHTS
-  std::array<OpenClBuffer, 3> skyBuffers_;    // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL
+  std::array<OpenClBuffer, 12> sceneBuffers_;  // in the order of the bindings table in loadScene
   uint64_t sceneBytes_ = 0;
   OpenClBuffer params_;
   OpenClBuffer rays_;

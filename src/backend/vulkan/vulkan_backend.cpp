@@ -50,6 +50,9 @@ VkDescriptorType descriptorType(uint32_t binding) {
     case WP_BINDING_ENV_RADIANCE:
     case WP_BINDING_ENV_MARGINAL:
     case WP_BINDING_ENV_CONDITIONAL:
+    case WP_BINDING_TRIANGLE_SHADING:
+    case WP_BINDING_TEXTURES:
+    case WP_BINDING_TEXELS:
     case WP_BINDING_RAYS_READ:
     case WP_BINDING_HITS_READ:
     case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -197,6 +200,9 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   uploadVector(*context_, sceneBuffers_[6], scene.skyRadiance);
   uploadVector(*context_, sceneBuffers_[7], scene.skyMarginal);
   uploadVector(*context_, sceneBuffers_[8], scene.skyConditional);
+  uploadVector(*context_, sceneBuffers_[9], scene.triangleShading);
+  uploadVector(*context_, sceneBuffers_[10], scene.textures);
+  uploadVector(*context_, sceneBuffers_[11], scene.texels);
   if (params_.handle() != VK_NULL_HANDLE) {
     writeDescriptors();
   }
@@ -238,7 +244,8 @@ void VulkanBackend::writeDescriptors() {
   std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers = {
       &params_,      &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3], &sceneBuffers_[4],
       &sceneBuffers_[5], &rays_,        &hits_,            &shadowRays_,      &pathRadiance_,    &counters_,
-      &accumulation_, &sceneBuffers_[6], &sceneBuffers_[7], &sceneBuffers_[8], &rays_, &hits_, &shadowRays_};
+      &accumulation_, &sceneBuffers_[6], &sceneBuffers_[7], &sceneBuffers_[8], &sceneBuffers_[9],
+      &sceneBuffers_[10], &sceneBuffers_[11], &rays_,  &hits_,            &shadowRays_};
   for (VkBufferView view : texelViews_) {
     vkDestroyBufferView(context_->device, view, nullptr);
   }

@@ -47,8 +47,9 @@ private:
   std::vector<VkBufferView> texelViews_;
 
   // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS, then the sky's
-  // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL.
-  std::array<VulkanBuffer, 9> sceneBuffers_;
+  // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL, then WP_BINDING_TRIANGLE_SHADING ..
+  // WP_BINDING_TEXELS.
+  std::array<VulkanBuffer, 12> sceneBuffers_;
   VulkanBuffer params_;
   VulkanBuffer rays_;
   VulkanBuffer hits_;

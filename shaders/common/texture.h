@@ -1,0 +1,79 @@
+// Textures sampled by hand from the texel buffer (RGBA8 packed in uints), so both backends
+// share one implementation: wrap modes per axis, nearest or bilinear filtering, sRGB decode.
+#ifndef WP_TEXTURE_H
+#define WP_TEXTURE_H
+
+#include "layout.h"
+
+WP_BEGIN
+
+#ifdef WP_BUFFERS_AS_ARGUMENTS
+#define WP_TEXTURE_BUFFERS WP_GLOBAL_PTR(GpuTexture) textures, WP_GLOBAL_PTR(uint) texels,
+#define WP_TEXTURE_BUFFER_ARGS textures, texels,
+#else
+#define WP_TEXTURE_BUFFERS
+#define WP_TEXTURE_BUFFER_ARGS
+#endif
+
+// i mod size for any integer i, without the sign of % on negative numbers (undefined in GLSL).
+WP_FN int floorMod(int i, int size) { return i - size * toInt(floor(toFloat(i) / toFloat(size))); }
+
+// The texel index along one axis for texel coordinate i under a glTF wrap mode.
+WP_FN int wrapTexel(int i, int size, uint mode) {
+  if (mode == WP_TEXTURE_WRAP_CLAMP) {
+    return max(0, min(i, size - 1));
+  }
+  if (mode == WP_TEXTURE_WRAP_MIRROR) {
+    int m = floorMod(i, 2 * size);
+    return m < size ? m : 2 * size - 1 - m;
+  }
+  return floorMod(i, size);
+}
+
+WP_FN float srgbToLinear(float c) {
+  return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
+}
+
+// Texel (x, y), already wrapped, as linear RGBA in [0, 1].
+WP_FN vec4 texelAt(WP_TEXTURE_BUFFERS GpuTexture t, int x, int y) {
+  uint word = WP_TEXEL_WORD(t.info.x + toUint(y) * t.info.y + toUint(x));
+  vec4 c = make_vec4(toFloat(word & 255u), toFloat((word >> 8u) & 255u), toFloat((word >> 16u) & 255u),
+                     toFloat(word >> 24u)) *
+           (1.0f / 255.0f);
+  if ((t.info.w & WP_TEXTURE_SRGB) != 0u) {
+    c = make_vec4(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w);
+  }
+  return c;
+}
+
+// The texture at uv (glTF: origin at the image's top-left, v down). Bilinear filtering
+// blends in linear space (after the sRGB decode), as GPUs do with sRGB formats.
+WP_FN vec4 sampleTexture(WP_TEXTURE_BUFFERS uint index, vec2 uv) {
+  GpuTexture t = WP_TEXTURE(index);
+  int width = toInt(t.info.y);
+  int height = toInt(t.info.z);
+  uint wrapS = t.info.w & 3u;
+  uint wrapT = (t.info.w >> 2u) & 3u;
+  float x = uv.x * toFloat(width);
+  float y = uv.y * toFloat(height);
+  if ((t.info.w & WP_TEXTURE_NEAREST) != 0u) {
+    return texelAt(WP_TEXTURE_BUFFER_ARGS t, wrapTexel(toInt(floor(x)), width, wrapS),
+                   wrapTexel(toInt(floor(y)), height, wrapT));
+  }
+  // Texel centres sit at half-integer coordinates.
+  float fx = floor(x - 0.5f);
+  float fy = floor(y - 0.5f);
+  float ax = x - 0.5f - fx;
+  float ay = y - 0.5f - fy;
+  int x0 = wrapTexel(toInt(fx), width, wrapS);
+  int x1 = wrapTexel(toInt(fx) + 1, width, wrapS);
+  int y0 = wrapTexel(toInt(fy), height, wrapT);
+  int y1 = wrapTexel(toInt(fy) + 1, height, wrapT);
+  vec4 top = texelAt(WP_TEXTURE_BUFFER_ARGS t, x0, y0) * (1.0f - ax) + texelAt(WP_TEXTURE_BUFFER_ARGS t, x1, y0) * ax;
+  vec4 bottom = texelAt(WP_TEXTURE_BUFFER_ARGS t, x0, y1) * (1.0f - ax) + texelAt(WP_TEXTURE_BUFFER_ARGS t, x1, y1) * ax;
+  return top * (1.0f - ay) + bottom * ay;
+}
+
+WP_END
+
+#endif

@@ -1,0 +1,153 @@
+// End-to-end texture tests on both backends (Vulkan under validation): a Lambertian quad
+// under the constant white sky of an emitter-less scene has radiance equal to its albedo,
+// so every pixel shows the base colour texture as sampled there: the test checks that a
+// known 4x4 texture lands at the right place, with nearest and bilinear filtering, each
+// wrap mode and the sRGB decode.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <stb_image_write.h>
+
+#include "image/image_io.h"
+#include "support/gltf_writer.h"
+#include "support/render_exr.h"
+#include "support/run_wavepath.h"
+
+namespace wp::test {
+namespace {
+
+constexpr int kTexels = 4;
+constexpr int kPixels = 64;  // the quad fills the image; 8 pixels per texel
+
+struct TextureCase {
+  const char* name;
+  int wrap;       // glTF sampler wrapS = wrapT
+  int magFilter;  // glTF NEAREST 9728 or LINEAR 9729
+};
+
+void PrintTo(const TextureCase& c, std::ostream* os) { *os << c.name; }
+
+// Distinct sRGB-encoded colours per texel.
+glm::u8vec3 texel(int x, int y) { return glm::u8vec3(30 + 60 * x, 30 + 60 * y, 200 - 40 * x); }
+
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+glm::vec3 linearTexel(int x, int y) {
+  glm::vec3 c = glm::vec3(texel(x, y)) / 255.0f;
+  return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
+}
+
+int wrap(int i, int mode) {
+  if (mode == 33071) return std::clamp(i, 0, kTexels - 1);  // CLAMP_TO_EDGE
+  int period = mode == 33648 ? 2 * kTexels : kTexels;       // MIRRORED_REPEAT or REPEAT
+  int m = ((i % period) + period) % period;
+  return m < kTexels ? m : 2 * kTexels - 1 - m;
+}
+
+// The expected sample at uv, written independently of texture.h.
+glm::vec3 expected(const TextureCase& c, glm::vec2 uv) {
+  glm::vec2 t = uv * float(kTexels);
+  if (c.magFilter == 9728) {
+    return linearTexel(wrap(int(std::floor(t.x)), c.wrap), wrap(int(std::floor(t.y)), c.wrap));
+  }
+  glm::vec2 f = glm::floor(t - 0.5f);
+  glm::vec2 a = t - 0.5f - f;
+  int x0 = int(f.x), y0 = int(f.y);
+  auto at = [&](int x, int y) { return linearTexel(wrap(x, c.wrap), wrap(y, c.wrap)); };
+  return (at(x0, y0) * (1 - a.x) + at(x0 + 1, y0) * a.x) * (1 - a.y) +
+         (at(x0, y0 + 1) * (1 - a.x) + at(x0 + 1, y0 + 1) * a.x) * a.y;
+}
+
+// A quad in the y = 0 plane over [-1, 1]^2 with uv = (x, z) + 0.5, so uv spans [-0.5, 1.5]
+// and the wrap modes show; a camera 2 above it looking down sees exactly the quad, image
+// left at -x and image top at -z: pixel (px, py) sees uv = -0.5 + 2 (p + 0.5) / kPixels.
+std::filesystem::path writeScene(const TextureCase& c, const std::filesystem::path& dir) {
+  std::vector<uint8_t> rgb;
+  for (int y = 0; y < kTexels; ++y) {
+    for (int x = 0; x < kTexels; ++x) {
+      glm::u8vec3 t = texel(x, y);
+      rgb.insert(rgb.end(), {t.x, t.y, t.z});
+    }
+  }
+  stbi_write_png((dir / "checker.png").string().c_str(), kTexels, kTexels, 3, rgb.data(), kTexels * 3);
+  std::vector<float> data = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
+                             1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
+  std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  std::vector<uint8_t> bytes(data.size() * 4 + indices.size() * 4);
+  std::memcpy(bytes.data(), data.data(), data.size() * 4);
+  std::memcpy(bytes.data() + data.size() * 4, indices.data(), indices.size() * 4);
+  std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 2, 0], "rotation": [-0.70710678, 0, 0, 0.70710678]}],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.927295218, "aspectRatio": 1, "znear": 0.01}}],
+  "buffers": [{"byteLength": )" + std::to_string(bytes.size()) +
+                     R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 80, "byteStride": 20},
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 24}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
+                {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 4, "type": "VEC2"},
+                {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "doubleSided": true,
+                 "extras": {"wavepath": {"bsdf": "lambert"}}}],
+  "textures": [{"source": 0, "sampler": 0}],
+  "images": [{"uri": "checker.png"}],
+  "samplers": [{"magFilter": )" + std::to_string(c.magFilter) +
+                     R"(, "wrapS": )" + std::to_string(c.wrap) + R"(, "wrapT": )" + std::to_string(c.wrap) + "}]}";
+  std::ofstream(dir / "quad.gltf") << json;
+  return dir / "quad.gltf";
+}
+
+class TextureRender : public ::testing::TestWithParam<std::tuple<std::string, TextureCase>> {};
+
+TEST_P(TextureRender, QuadShowsTheTextureAsSampled) {
+  const auto& [backend, c] = GetParam();
+  std::filesystem::path scene = writeScene(c, scratchDirectory(std::string("texture-") + c.name));
+  RadianceImage image = renderExr(backend, scene,
+                                  {"--width", std::to_string(kPixels), "--height", std::to_string(kPixels), "--spp",
+                                   "64", "--mode", "bsdf"});
+  ASSERT_EQ(image.mean.size(), size_t(kPixels * kPixels));
+  int wrong = 0;
+  for (int py = 0; py < kPixels; ++py) {
+    for (int px = 0; px < kPixels; ++px) {
+      glm::vec2 uv = glm::vec2(-0.5f) + 2.0f * (glm::vec2(px, py) + 0.5f) / float(kPixels);
+      glm::vec3 want = expected(c, uv);
+      size_t i = size_t(py) * kPixels + px;
+      for (int k = 0; k < 3; ++k) {
+        // Nearest: every pixel lies inside one texel, exact. Bilinear: the pixel's jittered
+        // samples average the (locally bilinear) texture to its value at the pixel centre,
+        // within their noise. 6 standard errors, estimated from 64 samples (Student's t
+        // with 63 degrees of freedom), leave a 0.1% chance of a false alarm among 12288.
+        double tolerance = 1e-4 + 6.0 * std::sqrt(double(image.variance[i][k]));
+        if (std::abs(image.mean[i][k] - want[k]) > tolerance && ++wrong <= 5) {
+          ADD_FAILURE() << "pixel (" << px << ", " << py << ") channel " << k << ": " << image.mean[i][k]
+                        << ", expected " << want[k];
+        }
+      }
+    }
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
+const TextureCase kCases[] = {
+    {"NearestRepeat", 10497, 9728}, {"NearestClamp", 33071, 9728}, {"NearestMirror", 33648, 9728},
+    {"LinearRepeat", 10497, 9729},  {"LinearClamp", 33071, 9729},
+};
+
+std::string caseName(const ::testing::TestParamInfo<std::tuple<std::string, TextureCase>>& info) {
+  return std::string(std::get<1>(info.param).name) + "_" + std::get<0>(info.param);
+}
+
+INSTANTIATE_TEST_SUITE_P(Textures, TextureRender,
+                         ::testing::Combine(::testing::Values(std::string("vulkan"), std::string("opencl")),
+                                            ::testing::ValuesIn(kCases)),
+                         caseName);
+
+}  // namespace
+}  // namespace wp::test
