@@ -2,7 +2,7 @@
 // under the constant white sky of an emitter-less scene has radiance equal to its albedo,
 // so every pixel shows the base colour texture as sampled there: the test checks that a
 // known 4x4 texture lands at the right place, with nearest and bilinear filtering, each
-// wrap mode and the sRGB decode.
+// wrap mode and the sRGB decode, and that COLOR_0 multiplies it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,7 +30,11 @@ struct TextureCase {
   const char* name;
   int wrap;       // glTF sampler wrapS = wrapT
   int magFilter;  // glTF NEAREST 9728 or LINEAR 9729
+  bool vertexColor = false;  // COLOR_0 kVertexColor at every vertex (UNSIGNED_BYTE, normalized)
 };
+
+// Exactly representable in 8 bits, so the expected product is exact too.
+const glm::vec3 kVertexColor = glm::vec3(51, 102, 204) / 255.0f;
 
 void PrintTo(const TextureCase& c, std::ostream* os) { *os << c.name; }
 
@@ -52,7 +56,7 @@ int wrap(int i, int mode) {
 }
 
 // The expected sample at uv, written independently of texture.h.
-glm::vec3 expected(const TextureCase& c, glm::vec2 uv) {
+glm::vec3 textureAt(const TextureCase& c, glm::vec2 uv) {
   glm::vec2 t = uv * float(kTexels);
   if (c.magFilter == 9728) {
     return linearTexel(wrap(int(std::floor(t.x)), c.wrap), wrap(int(std::floor(t.y)), c.wrap));
@@ -63,6 +67,10 @@ glm::vec3 expected(const TextureCase& c, glm::vec2 uv) {
   auto at = [&](int x, int y) { return linearTexel(wrap(x, c.wrap), wrap(y, c.wrap)); };
   return (at(x0, y0) * (1 - a.x) + at(x0 + 1, y0) * a.x) * (1 - a.y) +
          (at(x0, y0 + 1) * (1 - a.x) + at(x0 + 1, y0 + 1) * a.x) * a.y;
+}
+
+glm::vec3 expected(const TextureCase& c, glm::vec2 uv) {
+  return textureAt(c, uv) * (c.vertexColor ? kVertexColor : glm::vec3(1.0f));
 }
 
 // A quad in the y = 0 plane over [-1, 1]^2 with uv = (x, z) + 0.5, so uv spans [-0.5, 1.5]
@@ -80,20 +88,27 @@ std::filesystem::path writeScene(const TextureCase& c, const std::filesystem::pa
   std::vector<float> data = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
                              1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
   std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
-  std::vector<uint8_t> bytes(data.size() * 4 + indices.size() * 4);
+  std::vector<uint8_t> bytes(data.size() * 4 + indices.size() * 4 + 16);
   std::memcpy(bytes.data(), data.data(), data.size() * 4);
   std::memcpy(bytes.data() + data.size() * 4, indices.data(), indices.size() * 4);
+  for (size_t v = 0; v < 4; ++v) {  // COLOR_0 at byte 104
+    const uint8_t color[] = {51, 102, 204, 255};
+    std::memcpy(bytes.data() + 104 + 4 * v, color, 4);
+  }
   std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
   "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 2, 0], "rotation": [-0.70710678, 0, 0, 0.70710678]}],
   "cameras": [{"type": "perspective", "perspective": {"yfov": 0.927295218, "aspectRatio": 1, "znear": 0.01}}],
   "buffers": [{"byteLength": )" + std::to_string(bytes.size()) +
                      R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 80, "byteStride": 20},
-                  {"buffer": 0, "byteOffset": 80, "byteLength": 24}],
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 24},
+                  {"buffer": 0, "byteOffset": 104, "byteLength": 16}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
                 {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 4, "type": "VEC2"},
-                {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+                {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"},
+                {"bufferView": 2, "componentType": 5121, "normalized": true, "count": 4, "type": "VEC4"}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1)" +
+                     std::string(c.vertexColor ? R"(, "COLOR_0": 3)" : "") + R"(}, "indices": 2, "material": 0}]}],
   "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "doubleSided": true,
                  "extras": {"wavepath": {"bsdf": "lambert"}}}],
   "textures": [{"source": 0, "sampler": 0}],
@@ -137,7 +152,7 @@ TEST_P(TextureRender, QuadShowsTheTextureAsSampled) {
 
 const TextureCase kCases[] = {
     {"NearestRepeat", 10497, 9728}, {"NearestClamp", 33071, 9728}, {"NearestMirror", 33648, 9728},
-    {"LinearRepeat", 10497, 9729},  {"LinearClamp", 33071, 9729},
+    {"LinearRepeat", 10497, 9729},  {"LinearClamp", 33071, 9729}, {"NearestRepeatVertexColor", 10497, 9728, true},
 };
 
 std::string caseName(const ::testing::TestParamInfo<std::tuple<std::string, TextureCase>>& info) {

@@ -47,10 +47,11 @@ WP_FN ShadeResult shadeMiss(RenderParams params, PathRay ray) {
   return r;
 }
 
-// The material at the hit with its textures applied (glTF: base colour times the texture;
-// metallic and roughness times the texture's blue and green). Surfaces without TEXCOORD_0
-// (and spheres and planes) use the constant factors.
+// The material at the hit with its vertex colour and textures applied (glTF: base colour
+// times COLOR_0 times the texture; metallic and roughness times the texture's blue and
+// green). Surfaces without TEXCOORD_0 (and spheres and planes) use the constant factors.
 WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+  m.baseColor = m.baseColor * s.color;
   if (!s.hasUv) {
     return m;
   }

@@ -21,6 +21,7 @@ WP_STRUCT(SurfaceHit)
   vec3 shadingNormal;  // unit interpolated vertex normal on the front side; `normal` if none
   vec2 uv;             // TEXCOORD_0 at the hit, if hasUv
   bool hasUv;
+  vec4 color;          // COLOR_0 at the hit (white without)
   uint material;
   uint light;     // index into the light buffer, WP_INVALID if not a sampled light
 WP_STRUCT_END(SurfaceHit)
@@ -37,6 +38,13 @@ WP_FN vec3 normalToWorld(GpuInstance inst, vec3 n) {
 WP_FN vec3 pointToObject(GpuInstance inst, vec3 p) {
   vec4 q = make_vec4(p.x, p.y, p.z, 1.0f);
   return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
+}
+
+// Four bytes (r in the low one) as values in [0, 1].
+WP_FN vec4 unpackUnorm8(uint word) {
+  return make_vec4(toFloat(word & 255u), toFloat((word >> 8u) & 255u), toFloat((word >> 16u) & 255u),
+                   toFloat(word >> 24u)) *
+         (1.0f / 255.0f);
 }
 
 // Barycentrics (of vertices 1 and 2) of an object-space point on the triangle's plane,
@@ -64,6 +72,7 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   s.light = WP_INVALID;
   s.uv = make_vec2(0.0f, 0.0f);
   s.hasUv = false;
+  s.color = make_vec4(1.0f, 1.0f, 1.0f, 1.0f);
   if ((instanceField & WP_HIT_PLANE) != 0u) {
     GpuPlane plane = WP_PLANE(instanceField & ~WP_HIT_PLANE);
     s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
@@ -92,6 +101,8 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   s.hasUv = shading.v.w != 0.0f;
   s.uv = make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
          make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
+  s.color = unpackUnorm8(shading.colors.x) * (1.0f - b.x - b.y) + unpackUnorm8(shading.colors.y) * b.x +
+            unpackUnorm8(shading.colors.z) * b.y;
   if (dot(n, n) > 1e-12f) {
     // Vertex normals on the back of the face (bad data) are taken as facing the front.
     vec3 world = normalToWorld(inst, n);

@@ -68,10 +68,11 @@ GpuPlane loadPlane(uint i) {
 
 GpuTriangleShading loadTriangleShading(uint i) {
   GpuTriangleShading t;
-  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 4u, 0u);
-  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 4u, 1u);
-  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 4u, 2u);
-  t.v = WP_FLOATS(triangleShadingTexels, i, 4u, 3u);
+  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 5u, 0u);
+  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 5u, 1u);
+  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 5u, 2u);
+  t.v = WP_FLOATS(triangleShadingTexels, i, 5u, 3u);
+  t.colors = WP_UINTS(triangleShadingTexels, i, 5u, 4u);
   return t;
 }
 

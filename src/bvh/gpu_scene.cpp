@@ -152,7 +152,8 @@ struct PackedMesh {
   std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
 };
 
-// Vertex normals and TEXCOORD_0 of triangle t, zero where the mesh has none.
+// Vertex normals, TEXCOORD_0 and COLOR_0 of triangle t (zero normals and uvs, white, where
+// the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
   gpu::GpuTriangleShading shading{};
   const uint32_t* corner = &mesh.indices[3 * t];
@@ -165,6 +166,11 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
     }
   }
   shading.v.w = mesh.uvs.empty() ? 0.0f : 1.0f;
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec4 c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[corner[k]];
+    const glm::uvec4 bytes = glm::uvec4(glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f));
+    shading.colors[k] = bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
+  }
   return shading;
 }
 

@@ -41,6 +41,8 @@ struct Mesh {
   std::vector<glm::vec3> normals;
   // glTF TEXCOORD_0 per vertex, or empty when no primitive has it; zero where one lacks it.
   std::vector<glm::vec2> uvs;
+  // glTF COLOR_0 per vertex (linear RGBA), or empty when no primitive has it; white where one lacks it.
+  std::vector<glm::vec4> colors;
   std::vector<uint32_t> indices;    // 3 per triangle, counter-clockwise = front face
   std::vector<uint32_t> materials;  // one material index per triangle
 
