@@ -125,7 +125,7 @@ WP_STRUCT_END(GpuPlane)
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
 
-// A surface material, 80 bytes.
+// A surface material, 96 bytes.
 WP_STRUCT(GpuMaterial)
   vec4 baseColor;    // rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
   vec4 emission;     // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
@@ -133,7 +133,8 @@ WP_STRUCT(GpuMaterial)
   vec4 attenuation;  // rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
                      // (WP_FLT_MAX: no absorption)
   uvec4 info;        // x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness
-                     // texture (WP_INVALID: none), w: unused
+                     // texture, w: normal texture (WP_INVALID: none)
+  vec4 normalMap;    // x: the normal texture's scale, yzw: unused
 WP_STRUCT_END(GpuMaterial)
 
 // Emissive triangle in world space, with its alias-table entry for power-proportional

@@ -336,7 +336,9 @@ GpuScene packScene(const Scene& scene) {
          glm::vec4(material.metallic, material.roughness, material.ior, material.transmission),
          glm::vec4(material.attenuationColor, material.attenuationDistance),
          glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF,
-                    textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture), 0u)});
+                    textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
+                    textureIndex(material.normalTexture)),
+         glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

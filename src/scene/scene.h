@@ -28,6 +28,8 @@ struct Material {
   bool doubleSided = false;  // glTF doubleSided; a single-sided emitter emits on its front only
   int baseColorTexture = -1;          // index into Scene::textures (sRGB), -1: none
   int metallicRoughnessTexture = -1;  // index into Scene::textures (linear; B metallic, G roughness)
+  int normalTexture = -1;             // index into Scene::textures (linear, tangent space)
+  float normalScale = 1.0f;
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
