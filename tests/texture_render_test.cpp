@@ -2,7 +2,8 @@
 // under the constant white sky of an emitter-less scene has radiance equal to its albedo,
 // so every pixel shows the base colour texture as sampled there: the test checks that a
 // known 4x4 texture lands at the right place, with nearest and bilinear filtering, each
-// wrap mode and the sRGB decode.
+// wrap mode and the sRGB decode, and that COLOR_0 multiplies it. A normal texture tilts the
+// shading normal as the equivalent vertex normals do.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,6 +18,7 @@
 
 #include "image/image_io.h"
 #include "support/gltf_writer.h"
+#include "support/image_stats.h"
 #include "support/render_exr.h"
 #include "support/run_wavepath.h"
 
@@ -30,7 +32,11 @@ struct TextureCase {
   const char* name;
   int wrap;       // glTF sampler wrapS = wrapT
   int magFilter;  // glTF NEAREST 9728 or LINEAR 9729
+  bool vertexColor = false;  // COLOR_0 kVertexColor at every vertex (UNSIGNED_BYTE, normalized)
 };
+
+// Exactly representable in 8 bits, so the expected product is exact too.
+const glm::vec3 kVertexColor = glm::vec3(51, 102, 204) / 255.0f;
 
 void PrintTo(const TextureCase& c, std::ostream* os) { *os << c.name; }
 
@@ -52,7 +58,7 @@ int wrap(int i, int mode) {
 }
 
 // The expected sample at uv, written independently of texture.h.
-glm::vec3 expected(const TextureCase& c, glm::vec2 uv) {
+glm::vec3 textureAt(const TextureCase& c, glm::vec2 uv) {
   glm::vec2 t = uv * float(kTexels);
   if (c.magFilter == 9728) {
     return linearTexel(wrap(int(std::floor(t.x)), c.wrap), wrap(int(std::floor(t.y)), c.wrap));
@@ -63,6 +69,10 @@ glm::vec3 expected(const TextureCase& c, glm::vec2 uv) {
   auto at = [&](int x, int y) { return linearTexel(wrap(x, c.wrap), wrap(y, c.wrap)); };
   return (at(x0, y0) * (1 - a.x) + at(x0 + 1, y0) * a.x) * (1 - a.y) +
          (at(x0, y0 + 1) * (1 - a.x) + at(x0 + 1, y0 + 1) * a.x) * a.y;
+}
+
+glm::vec3 expected(const TextureCase& c, glm::vec2 uv) {
+  return textureAt(c, uv) * (c.vertexColor ? kVertexColor : glm::vec3(1.0f));
 }
 
 // A quad in the y = 0 plane over [-1, 1]^2 with uv = (x, z) + 0.5, so uv spans [-0.5, 1.5]
@@ -80,20 +90,27 @@ std::filesystem::path writeScene(const TextureCase& c, const std::filesystem::pa
   std::vector<float> data = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
                              1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
   std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
-  std::vector<uint8_t> bytes(data.size() * 4 + indices.size() * 4);
+  std::vector<uint8_t> bytes(data.size() * 4 + indices.size() * 4 + 16);
   std::memcpy(bytes.data(), data.data(), data.size() * 4);
   std::memcpy(bytes.data() + data.size() * 4, indices.data(), indices.size() * 4);
+  for (size_t v = 0; v < 4; ++v) {  // COLOR_0 at byte 104
+    const uint8_t color[] = {51, 102, 204, 255};
+    std::memcpy(bytes.data() + 104 + 4 * v, color, 4);
+  }
   std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
   "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 2, 0], "rotation": [-0.70710678, 0, 0, 0.70710678]}],
   "cameras": [{"type": "perspective", "perspective": {"yfov": 0.927295218, "aspectRatio": 1, "znear": 0.01}}],
   "buffers": [{"byteLength": )" + std::to_string(bytes.size()) +
                      R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 80, "byteStride": 20},
-                  {"buffer": 0, "byteOffset": 80, "byteLength": 24}],
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 24},
+                  {"buffer": 0, "byteOffset": 104, "byteLength": 16}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
                 {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 4, "type": "VEC2"},
-                {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+                {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"},
+                {"bufferView": 2, "componentType": 5121, "normalized": true, "count": 4, "type": "VEC4"}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1)" +
+                     std::string(c.vertexColor ? R"(, "COLOR_0": 3)" : "") + R"(}, "indices": 2, "material": 0}]}],
   "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "doubleSided": true,
                  "extras": {"wavepath": {"bsdf": "lambert"}}}],
   "textures": [{"source": 0, "sampler": 0}],
@@ -135,9 +152,82 @@ TEST_P(TextureRender, QuadShowsTheTextureAsSampled) {
   EXPECT_EQ(wrong, 0);
 }
 
+// ---- Normal mapping ------------------------------------------------------------------
+
+enum class Tilt { None, NormalTexture, VertexNormal };
+
+// The quad above (uv = (x, z) + 0.5, so +u is +x and +v is +z), Lambertian, lit by a
+// one-sided area light off to the side at +x, out of view. NormalTexture tilts it with a
+// 1x1 normal texture, VertexNormal with the same normal as glTF NORMALs: tangent-space
+// (x, y, z) is world x T + y B + z N with T = +x, B = -z ("up" in the image), N = +y.
+std::filesystem::path writeLitQuad(Tilt tilt, const std::filesystem::path& dir) {
+  const uint8_t texel[] = {230, 90, 220};
+  stbi_write_png((dir / "normal.png").string().c_str(), 1, 1, 3, texel, 3);
+  glm::vec3 local = glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f;
+  glm::vec3 world = glm::normalize(glm::vec3(local.x, local.z, -local.y));
+  std::vector<float> quad = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
+                             1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
+  std::vector<float> normals;
+  for (int v = 0; v < 4; ++v) normals.insert(normals.end(), {world.x, world.y, world.z});
+  // Wound to face down, and off to +z too, so that a wrong bitangent sign shows.
+  std::vector<float> lamp = {1, 1.5f, 0.5f, 2, 1.5f, 0.5f, 2, 1.5f, 2, 1, 1.5f, 2};
+  std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  std::vector<uint8_t> bytes(80 + 48 + 24 + 48);
+  std::memcpy(bytes.data(), quad.data(), 80);
+  std::memcpy(bytes.data() + 80, normals.data(), 48);
+  std::memcpy(bytes.data() + 128, indices.data(), 24);
+  std::memcpy(bytes.data() + 152, lamp.data(), 48);
+  std::string attributes = R"("POSITION": 0, "TEXCOORD_0": 1)" +
+                           std::string(tilt == Tilt::VertexNormal ? R"(, "NORMAL": 2)" : "");
+  std::string normalTexture = tilt == Tilt::NormalTexture ? R"(, "normalTexture": {"index": 0})" : "";
+  std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
+  "nodes": [{"mesh": 0}, {"mesh": 1}, {"camera": 0, "translation": [0, 2, 0], "rotation": [-0.70710678, 0, 0, 0.70710678]}],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.927295218, "aspectRatio": 1, "znear": 0.01}}],
+  "buffers": [{"byteLength": )" + std::to_string(bytes.size()) +
+                     R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 80, "byteStride": 20},
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 128, "byteLength": 24},
+                  {"buffer": 0, "byteOffset": 152, "byteLength": 48}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
+                {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 4, "type": "VEC2"},
+                {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+                {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"},
+                {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC3", "min": [1, 1.5, 0.5], "max": [2, 1.5, 2]}],
+  "meshes": [{"primitives": [{"attributes": {)" + attributes + R"(}, "indices": 3, "material": 0}]},
+             {"primitives": [{"attributes": {"POSITION": 4}, "indices": 3, "material": 1}]}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}, "extras": {"wavepath": {"bsdf": "lambert"}})" +
+                     normalTexture + R"(},
+                {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [1, 1, 1],
+                 "extras": {"wavepath": {"bsdf": "lambert"}}}],
+  "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "normal.png"}],
+  "samplers": [{"magFilter": 9728}]})";
+  std::ofstream(dir / "lit.gltf") << json;
+  return dir / "lit.gltf";
+}
+
+class NormalMap : public ::testing::TestWithParam<std::string> {};
+
+// The normal texture and the equivalent vertex normals render the same image mean, and it
+// differs clearly from the untilted quad's.
+TEST_P(NormalMap, TiltsLikeTheEquivalentVertexNormal) {
+  std::vector<ImageMean> means;
+  for (Tilt tilt : {Tilt::None, Tilt::NormalTexture, Tilt::VertexNormal}) {
+    std::filesystem::path scene = writeLitQuad(tilt, scratchDirectory("normal-map-" + std::to_string(int(tilt))));
+    means.push_back(imageMean(renderExr(GetParam(), scene, {"--width", "32", "--height", "32", "--spp", "64"})));
+  }
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LT(meanZ(means[1], means[2], c), 4.0) << means[1].mean[c] << " vs " << means[2].mean[c];
+    EXPECT_GT(meanZ(means[0], means[1], c), 10.0) << means[0].mean[c] << " vs " << means[1].mean[c];
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backend, NormalMap, ::testing::Values(std::string("vulkan"), std::string("opencl")),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
 const TextureCase kCases[] = {
     {"NearestRepeat", 10497, 9728}, {"NearestClamp", 33071, 9728}, {"NearestMirror", 33648, 9728},
-    {"LinearRepeat", 10497, 9729},  {"LinearClamp", 33071, 9729},
+    {"LinearRepeat", 10497, 9729},  {"LinearClamp", 33071, 9729}, {"NearestRepeatVertexColor", 10497, 9728, true},
 };
 
 std::string caseName(const ::testing::TestParamInfo<std::tuple<std::string, TextureCase>>& info) {

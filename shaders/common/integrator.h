@@ -73,10 +73,11 @@ WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray)
   return r;
 }
 
-// The material at the hit with its textures applied (glTF: base colour times the texture;
-// metallic and roughness times the texture's blue and green). Surfaces without TEXCOORD_0
-// (and spheres and planes) use the constant factors.
+// The material at the hit with its vertex colour and textures applied (glTF: base colour
+// times COLOR_0 times the texture; metallic and roughness times the texture's blue and
+// green). Surfaces without TEXCOORD_0 (and spheres and planes) use the constant factors.
 WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+  m.baseColor = m.baseColor * s.color;
   if (!s.hasUv) {
     return m;
   }
@@ -89,6 +90,28 @@ WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit 
     m.surface.y *= t.y;
   }
   return m;
+}
+
+// The shading normal tilted by the material's normal texture (glTF: tangent-space, +X along
+// the triangle's dP/du, +Y "up" in the image, i.e. along -dP/dv, xy scaled by the texture's
+// scale). The frame is the triangle's own uv gradient, orthogonalized against the
+// interpolated normal; TANGENT attributes in the file are not read. Falls back to the
+// unmapped normal where the result would face away from the geometric front.
+WP_FN vec3 normalMapped(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+  if (m.info.w == WP_INVALID || !s.hasUv) {
+    return s.shadingNormal;
+  }
+  vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.w, s.uv);
+  float scale = m.normalMap.x;
+  vec3 tangentSpace = make_vec3((2.0f * t.x - 1.0f) * scale, (2.0f * t.y - 1.0f) * scale, 2.0f * t.z - 1.0f);
+  vec3 n = s.shadingNormal;
+  vec3 tangent = s.tangent - n * dot(n, s.tangent);
+  vec3 bitangent = s.bitangent - n * dot(n, s.bitangent) - tangent * (dot(tangent, s.bitangent) / max(dot(tangent, tangent), 1e-20f));
+  if (dot(tangent, tangent) < 1e-12f || dot(bitangent, bitangent) < 1e-12f || dot(tangentSpace, tangentSpace) < 1e-12f) {
+    return n;
+  }
+  vec3 mapped = normalize(normalize(tangent) * tangentSpace.x + normalize(bitangent) * tangentSpace.y + n * tangentSpace.z);
+  return dot(mapped, s.normal) > 0.0f ? mapped : n;
 }
 
 // True when wi is on the same side of the geometric surface as wo (product of the two
@@ -127,6 +150,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
 
   SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t);
   GpuMaterial m = texturedMaterial(WP_TEXTURE_BUFFER_ARGS WP_MATERIAL(s.material), s);
+  s.shadingNormal = normalMapped(WP_TEXTURE_BUFFER_ARGS m, s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);

@@ -88,12 +88,14 @@ WP_STRUCT(GpuTriangle)
 WP_STRUCT_END(GpuTriangle)
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit, so the
-// traversal's triangle records stay 64 bytes: 64 bytes.
+// traversal's triangle records stay 64 bytes: 80 bytes.
 WP_STRUCT(GpuTriangleShading)
   vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0, w: u0;
   vec4 normal1;  // all three normals zero: shade with the geometric normal (flat); w: u1
   vec4 normal2;  // w: u2
   vec4 v;        // xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
+  uvec4 colors;  // xyz: COLOR_0 at the three vertices as RGBA8 (linear, r in the low byte);
+                 // white without COLOR_0
 WP_STRUCT_END(GpuTriangleShading)
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
@@ -127,7 +129,7 @@ WP_STRUCT_END(GpuPlane)
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
 
-// A surface material, 80 bytes.
+// A surface material, 96 bytes.
 WP_STRUCT(GpuMaterial)
   vec4 baseColor;    // rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
   vec4 emission;     // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
@@ -135,7 +137,8 @@ WP_STRUCT(GpuMaterial)
   vec4 attenuation;  // rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
                      // (WP_FLT_MAX: no absorption)
   uvec4 info;        // x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness
-                     // texture (WP_INVALID: none), w: unused
+                     // texture, w: normal texture (WP_INVALID: none)
+  vec4 normalMap;    // x: the normal texture's scale, yzw: unused
 WP_STRUCT_END(GpuMaterial)
 
 // Emissive triangle in world space, with its alias-table entry for power-proportional

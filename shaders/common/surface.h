@@ -21,6 +21,9 @@ WP_STRUCT(SurfaceHit)
   vec3 shadingNormal;  // unit interpolated vertex normal on the front side; `normal` if none
   vec2 uv;             // TEXCOORD_0 at the hit, if hasUv
   bool hasUv;
+  vec4 color;          // COLOR_0 at the hit (white without)
+  vec3 tangent;        // unit world-space dP/du of the triangle (normal mapping), if hasUv
+  vec3 bitangent;      // unit world-space -dP/dv: tangent-space +Y is "up" in the image
   uint material;
   uint light;     // index into the light buffer, WP_INVALID if not a sampled light
 WP_STRUCT_END(SurfaceHit)
@@ -34,9 +37,27 @@ WP_FN vec3 normalToWorld(GpuInstance inst, vec3 n) {
   return normalize(r0 * n.x + r1 * n.y + r2 * n.z);
 }
 
+// Transforms an object-space direction to world space, unit length: the inverse of the
+// world-to-object matrix M applied to d, as the cofactor columns over det(M).
+WP_FN vec3 objectToWorldDirection(GpuInstance inst, vec3 d) {
+  vec3 r0 = make_vec3(inst.worldToObject0.x, inst.worldToObject0.y, inst.worldToObject0.z);
+  vec3 r1 = make_vec3(inst.worldToObject1.x, inst.worldToObject1.y, inst.worldToObject1.z);
+  vec3 r2 = make_vec3(inst.worldToObject2.x, inst.worldToObject2.y, inst.worldToObject2.z);
+  vec3 c0 = cross(r1, r2);
+  vec3 w = (c0 * d.x + cross(r2, r0) * d.y + cross(r0, r1) * d.z) / dot(r0, c0);
+  return normalize(w);
+}
+
 WP_FN vec3 pointToObject(GpuInstance inst, vec3 p) {
   vec4 q = make_vec4(p.x, p.y, p.z, 1.0f);
   return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
+}
+
+// Four bytes (r in the low one) as values in [0, 1].
+WP_FN vec4 unpackUnorm8(uint word) {
+  return make_vec4(toFloat(word & 255u), toFloat((word >> 8u) & 255u), toFloat((word >> 16u) & 255u),
+                   toFloat(word >> 24u)) *
+         (1.0f / 255.0f);
 }
 
 // Barycentrics (of vertices 1 and 2) of an object-space point on the triangle's plane,
@@ -64,6 +85,9 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   s.light = WP_INVALID;
   s.uv = make_vec2(0.0f, 0.0f);
   s.hasUv = false;
+  s.color = make_vec4(1.0f, 1.0f, 1.0f, 1.0f);
+  s.tangent = make_vec3(1.0f, 0.0f, 0.0f);
+  s.bitangent = make_vec3(0.0f, 1.0f, 0.0f);
   if ((instanceField & WP_HIT_PLANE) != 0u) {
     GpuPlane plane = WP_PLANE(instanceField & ~WP_HIT_PLANE);
     s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
@@ -92,6 +116,22 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   s.hasUv = shading.v.w != 0.0f;
   s.uv = make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
          make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
+  s.color = unpackUnorm8(shading.colors.x) * (1.0f - b.x - b.y) + unpackUnorm8(shading.colors.y) * b.x +
+            unpackUnorm8(shading.colors.z) * b.y;
+  // The triangle's uv gradient: [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2].
+  float du1 = shading.normal1.w - shading.normal0.w;
+  float du2 = shading.normal2.w - shading.normal0.w;
+  float dv1 = shading.v.y - shading.v.x;
+  float dv2 = shading.v.z - shading.v.x;
+  float determinant = du1 * dv2 - du2 * dv1;
+  if (s.hasUv && determinant != 0.0f) {
+    vec3 dpdu = (e1 * dv2 - e2 * dv1) / determinant;
+    vec3 dpdv = (e2 * du1 - e1 * du2) / determinant;
+    s.tangent = objectToWorldDirection(inst, dpdu);
+    s.bitangent = -objectToWorldDirection(inst, dpdv);
+  } else {
+    s.hasUv = false;
+  }
   if (dot(n, n) > 1e-12f) {
     // Vertex normals on the back of the face (bad data) are taken as facing the front.
     vec3 world = normalToWorld(inst, n);

@@ -4,6 +4,7 @@
 #define WP_TEXTURE_H
 
 #include "layout.h"
+#include "surface.h"
 
 WP_BEGIN
 
@@ -36,10 +37,7 @@ WP_FN float srgbToLinear(float c) {
 
 // Texel (x, y), already wrapped, as linear RGBA in [0, 1].
 WP_FN vec4 texelAt(WP_TEXTURE_BUFFERS GpuTexture t, int x, int y) {
-  uint word = WP_TEXEL_WORD(t.info.x + toUint(y) * t.info.y + toUint(x));
-  vec4 c = make_vec4(toFloat(word & 255u), toFloat((word >> 8u) & 255u), toFloat((word >> 16u) & 255u),
-                     toFloat(word >> 24u)) *
-           (1.0f / 255.0f);
+  vec4 c = unpackUnorm8(WP_TEXEL_WORD(t.info.x + toUint(y) * t.info.y + toUint(x)));
   if ((t.info.w & WP_TEXTURE_SRGB) != 0u) {
     c = make_vec4(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w);
   }

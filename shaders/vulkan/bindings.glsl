@@ -71,10 +71,11 @@ GpuPlane loadPlane(uint i) {
 
 GpuTriangleShading loadTriangleShading(uint i) {
   GpuTriangleShading t;
-  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 4u, 0u);
-  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 4u, 1u);
-  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 4u, 2u);
-  t.v = WP_FLOATS(triangleShadingTexels, i, 4u, 3u);
+  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 5u, 0u);
+  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 5u, 1u);
+  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 5u, 2u);
+  t.v = WP_FLOATS(triangleShadingTexels, i, 5u, 3u);
+  t.colors = WP_UINTS(triangleShadingTexels, i, 5u, 4u);
   return t;
 }
 
@@ -89,11 +90,12 @@ uint loadTexelWord(uint i) { return texelFetch(texelTexels, int(i >> 2u))[i & 3u
 
 GpuMaterial loadMaterial(uint i) {
   GpuMaterial m;
-  m.baseColor = WP_FLOATS(materialTexels, i, 5u, 0u);
-  m.emission = WP_FLOATS(materialTexels, i, 5u, 1u);
-  m.surface = WP_FLOATS(materialTexels, i, 5u, 2u);
-  m.attenuation = WP_FLOATS(materialTexels, i, 5u, 3u);
-  m.info = WP_UINTS(materialTexels, i, 5u, 4u);
+  m.baseColor = WP_FLOATS(materialTexels, i, 6u, 0u);
+  m.emission = WP_FLOATS(materialTexels, i, 6u, 1u);
+  m.surface = WP_FLOATS(materialTexels, i, 6u, 2u);
+  m.attenuation = WP_FLOATS(materialTexels, i, 6u, 3u);
+  m.info = WP_UINTS(materialTexels, i, 6u, 4u);
+  m.normalMap = WP_FLOATS(materialTexels, i, 6u, 5u);
   return m;
 }
 

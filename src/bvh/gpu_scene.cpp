@@ -154,7 +154,8 @@ struct PackedMesh {
   std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
 };
 
-// Vertex normals and TEXCOORD_0 of triangle t, zero where the mesh has none.
+// Vertex normals, TEXCOORD_0 and COLOR_0 of triangle t (zero normals and uvs, white, where
+// the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
   gpu::GpuTriangleShading shading{};
   const uint32_t* corner = &mesh.indices[3 * t];
@@ -167,6 +168,11 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
     }
   }
   shading.v.w = mesh.uvs.empty() ? 0.0f : 1.0f;
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec4 c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[corner[k]];
+    const glm::uvec4 bytes = glm::uvec4(glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f));
+    shading.colors[k] = bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
+  }
   return shading;
 }
 
@@ -352,7 +358,9 @@ GpuScene packScene(const Scene& scene) {
          glm::vec4(material.metallic, material.roughness, material.ior, material.transmission),
          glm::vec4(material.attenuationColor, material.attenuationDistance),
          glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF,
-                    textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture), 0u)});
+                    textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
+                    textureIndex(material.normalTexture)),
+         glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

@@ -43,6 +43,14 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
     } else if (!baked.normals.empty()) {
       baked.normals.resize(baked.positions.size(), glm::vec3(0.0f));
     }
+    if (!mesh.colors.empty() || !baked.colors.empty()) {
+      baked.colors.resize(base, glm::vec4(1.0f));
+      if (mesh.colors.empty()) {
+        baked.colors.resize(baked.positions.size(), glm::vec4(1.0f));
+      } else {
+        baked.colors.insert(baked.colors.end(), mesh.colors.begin(), mesh.colors.end());
+      }
+    }
     if (!mesh.uvs.empty() || !baked.uvs.empty()) {
       baked.uvs.resize(base, glm::vec2(0.0f));
       if (mesh.uvs.empty()) {

@@ -1,6 +1,7 @@
 // Bounds-checked reading of glTF accessors: vertex positions and indices.
 #include "scene/gltf_accessors.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -136,6 +137,43 @@ std::vector<glm::vec2> readTexCoords(const Context& ctx, int index, const std::s
     }
   }
   return uvs;
+}
+
+std::vector<glm::vec4> readColors(const Context& ctx, int index, const std::string& where) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "COLOR_0");
+  const int type = accessor.componentType;
+  const bool knownType = type == TINYGLTF_COMPONENT_TYPE_FLOAT || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                         type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  const int components = accessor.type == TINYGLTF_TYPE_VEC3 ? 3 : accessor.type == TINYGLTF_TYPE_VEC4 ? 4 : 0;
+  if (!knownType || components == 0 || (type != TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized)) {
+    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
+         std::string("COLOR_0 must be VEC3 or VEC4 of FLOAT or normalized UNSIGNED_BYTE or UNSIGNED_SHORT, not ") +
+             componentName(type) + " " + typeName(accessor.type) + "; re-export the file");
+  }
+  const size_t componentSize = type == TINYGLTF_COMPONENT_TYPE_FLOAT ? 4 : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2 : 1;
+  const ElementRange range = locate(ctx, index, where, componentSize * components);
+  std::vector<glm::vec4> colors(range.count, glm::vec4(1.0f));
+  for (size_t i = 0; i < range.count; ++i) {
+    const unsigned char* element = range.first + i * range.stride;
+    for (int c = 0; c < components; ++c) {
+      float value = 0.0f;
+      if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+        std::memcpy(&value, element + 4 * c, 4);
+      } else if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        uint16_t v = 0;
+        std::memcpy(&v, element + 2 * c, 2);
+        value = float(v) / 65535.0f;
+      } else {
+        value = float(element[c]) / 255.0f;
+      }
+      if (!std::isfinite(value)) {
+        fail(ctx, where, "vertex " + std::to_string(i) + " of the COLOR_0 accessor " + std::to_string(index) +
+                             " is not finite; re-export the file");
+      }
+      colors[i][c] = std::clamp(value, 0.0f, 1.0f);
+    }
+  }
+  return colors;
 }
 
 std::vector<uint32_t> readIndices(const Context& ctx, int index, const std::string& where) {

@@ -22,6 +22,10 @@ std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int accessor, const
 // Reads a FLOAT VEC2 accessor (TEXCOORD_0) with the same checks as readVec3Attribute.
 std::vector<glm::vec2> readTexCoords(const Context& ctx, int accessor, const std::string& where);
 
+// Reads COLOR_0 (VEC3 or VEC4; FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT) as
+// RGBA in [0, 1], alpha 1 for VEC3, with the same checks as readVec3Attribute.
+std::vector<glm::vec4> readColors(const Context& ctx, int accessor, const std::string& where);
+
 // Reads a SCALAR accessor of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, with the same
 // checks as readVec3Attribute (the values themselves are checked by the caller).
 std::vector<uint32_t> readIndices(const Context& ctx, int accessor, const std::string& where);

@@ -105,13 +105,18 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   return out;
 }
 
-// Reads the base colour and metallic-roughness textures into `table`; returns whether the
-// material has textures that wavepath ignores (emissive, normal, occlusion, or a texture on
-// another TEXCOORD set than 0).
+// Reads the base colour, metallic-roughness and normal textures into `table`; returns
+// whether the material has textures that wavepath ignores (emissive, occlusion, or a
+// texture on another TEXCOORD set than 0).
 bool readTextures(const tinygltf::Material& material, const std::string& where,
                   TextureTable& table, Material& out) {
-  bool ignored = material.emissiveTexture.index >= 0 || material.normalTexture.index >= 0 ||
-                 material.occlusionTexture.index >= 0;
+  bool ignored = material.emissiveTexture.index >= 0 || material.occlusionTexture.index >= 0;
+  const tinygltf::NormalTextureInfo& normal = material.normalTexture;
+  if (normal.index >= 0 && normal.texCoord == 0) {
+    out.normalTexture = table.add(normal.index, false, where);
+    out.normalScale = std::isfinite(normal.scale) ? static_cast<float>(normal.scale) : 1.0f;
+  }
+  ignored = ignored || (normal.index >= 0 && normal.texCoord != 0);
   const tinygltf::TextureInfo& base = material.pbrMetallicRoughness.baseColorTexture;
   if (base.index >= 0 && base.texCoord == 0) {
     out.baseColorTexture = table.add(base.index, true, where);
@@ -137,7 +142,7 @@ std::vector<Material> convertMaterials(const Context& ctx, std::vector<Texture>&
   }
   if (ignoring > 0) {
     warnAt(ctx, "", std::to_string(ignoring) + " of " + std::to_string(materials.size()) +
-                        " materials have emissive, normal or occlusion textures, or textures on TEXCOORD_1 or "
+                        " materials have emissive or occlusion textures, or textures on TEXCOORD_1 or "
                         "later, which wavepath ignores: those render with their constant factors");
   }
   return materials;

@@ -47,9 +47,10 @@ struct VertexSource {
   int position = -1;
   int normal = -1;  // -1: none
   int uv = -1;      // TEXCOORD_0, -1: none
+  int color = -1;   // COLOR_0, -1: none
 
   bool operator<(const VertexSource& other) const {
-    return std::tie(position, normal, uv) < std::tie(other.position, other.normal, other.uv);
+    return std::tie(position, normal, uv, color) < std::tie(other.position, other.normal, other.uv, other.color);
   }
 };
 
@@ -90,8 +91,10 @@ private:
     const uint32_t material = materialOf(primitive, where);
     const auto normal = primitive.attributes.find("NORMAL");
     const auto uv = primitive.attributes.find("TEXCOORD_0");
+    const auto color = primitive.attributes.find("COLOR_0");
     const VertexSource source{position->second, normal == primitive.attributes.end() ? -1 : normal->second,
-                              uv == primitive.attributes.end() ? -1 : uv->second};
+                              uv == primitive.attributes.end() ? -1 : uv->second,
+                              color == primitive.attributes.end() ? -1 : color->second};
     const uint32_t vertexCount = addVertices(source, where);
     std::vector<uint32_t> sequence;
     if (primitive.indices == -1) {
@@ -168,6 +171,19 @@ private:
       }
       mesh_.uvs.resize(mesh_.positions.size() - positions.size(), glm::vec2(0.0f));
       mesh_.uvs.insert(mesh_.uvs.end(), uvs.begin(), uvs.end());
+    }
+    if (source.color >= 0 || !mesh_.colors.empty()) {
+      std::vector<glm::vec4> colors(positions.size(), glm::vec4(1.0f));
+      if (source.color >= 0) {
+        colors = readColors(ctx_, source.color, where);
+        if (colors.size() != positions.size()) {
+          fail(ctx_, where,
+               "COLOR_0 has " + std::to_string(colors.size()) + " vertices but POSITION " +
+                   std::to_string(positions.size()) + "; re-export the file");
+        }
+      }
+      mesh_.colors.resize(mesh_.positions.size() - positions.size(), glm::vec4(1.0f));
+      mesh_.colors.insert(mesh_.colors.end(), colors.begin(), colors.end());
     }
     return count;
   }

@@ -30,6 +30,8 @@ struct Material {
   bool doubleSided = false;  // glTF doubleSided; a single-sided emitter emits on its front only
   int baseColorTexture = -1;          // index into Scene::textures (sRGB), -1: none
   int metallicRoughnessTexture = -1;  // index into Scene::textures (linear; B metallic, G roughness)
+  int normalTexture = -1;             // index into Scene::textures (linear, tangent space)
+  float normalScale = 1.0f;
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
@@ -43,6 +45,8 @@ struct Mesh {
   std::vector<glm::vec3> normals;
   // glTF TEXCOORD_0 per vertex, or empty when no primitive has it; zero where one lacks it.
   std::vector<glm::vec2> uvs;
+  // glTF COLOR_0 per vertex (linear RGBA), or empty when no primitive has it; white where one lacks it.
+  std::vector<glm::vec4> colors;
   std::vector<uint32_t> indices;    // 3 per triangle, counter-clockwise = front face
   std::vector<uint32_t> materials;  // one material index per triangle
 
