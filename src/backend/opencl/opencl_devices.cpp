@@ -4,6 +4,7 @@
 #include <CL/cl_ext.h>
 
 #include <cstdio>
+#include <utility>
 
 #include "backend/opencl/cl_check.h"
 #include "core/error.h"
