@@ -76,6 +76,19 @@ TEST(InstanceBaking, MergesSingleUseMeshesAndKeepsSharedOnesInstanced) {
   EXPECT_EQ(baked.instances[2].objectToWorld, glm::mat4(1.0f));
 }
 
+TEST(InstanceBaking, AnimatedInstancesAndDeformingMeshesStayApart) {
+  Scene scene = testScene();
+  scene.instances[0].animated = true;  // mesh 0 moves rigidly
+  scene.meshes[2].deforming = true;    // mesh 2's vertices move
+  Scene baked = bakeSingleUseMeshes(scene);
+  ASSERT_EQ(baked.meshes.size(), 3u);  // nothing left to bake: no merged mesh
+  ASSERT_EQ(baked.instances.size(), 4u);
+  EXPECT_TRUE(baked.instances[0].animated);
+  EXPECT_EQ(baked.instances[0].objectToWorld, scene.instances[0].objectToWorld);
+  EXPECT_EQ(baked.meshes[baked.instances[0].mesh].triangleCount(), 50u);
+  EXPECT_TRUE(baked.meshes[baked.instances[3].mesh].deforming);
+}
+
 TEST(InstanceBaking, MirroredMeshKeepsItsFrontFace) {
   Scene scene = testScene();
   Scene baked = bakeSingleUseMeshes(scene);

@@ -19,13 +19,14 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
   for (const MeshInstance& inst : scene.instances) {
     const Mesh& mesh = scene.meshes[inst.mesh];
     float det = glm::determinant(glm::mat3(inst.objectToWorld));
-    if (uses[inst.mesh] != 1 || det == 0.0f) {
-      // Shared meshes stay instanced; singular transforms are left for the packer to report.
+    if (uses[inst.mesh] != 1 || det == 0.0f || inst.animated || mesh.deforming) {
+      // Shared meshes stay instanced; singular transforms are left for the packer to report;
+      // animated ones stay apart so that a new pose needs no re-baking.
       if (remap[inst.mesh] == UINT32_MAX) {
         remap[inst.mesh] = uint32_t(out.meshes.size());
         out.meshes.push_back(mesh);
       }
-      out.instances.push_back({remap[inst.mesh], inst.objectToWorld});
+      out.instances.push_back({remap[inst.mesh], inst.objectToWorld, inst.animated});
       continue;
     }
     uint32_t base = uint32_t(baked.positions.size());

@@ -49,6 +49,9 @@ struct Mesh {
   std::vector<glm::vec4> colors;
   std::vector<uint32_t> indices;    // 3 per triangle, counter-clockwise = front face
   std::vector<uint32_t> materials;  // one material index per triangle
+  // Set when an animation moves its vertices (morph targets or a skin): its BVH is then
+  // refitted per frame, and it is never baked into world space with other meshes.
+  bool deforming = false;
 
   size_t triangleCount() const { return indices.size() / 3; }
 };
@@ -69,6 +72,9 @@ struct Texture {
 struct MeshInstance {
   uint32_t mesh = 0;
   glm::mat4 objectToWorld{1.0f};
+  // Set when an animation moves it (its node or an ancestor has a channel): it then stays an
+  // instance, so a new pose rebuilds only the top-level BVH.
+  bool animated = false;
 };
 
 // Analytic sphere: the unit sphere at the origin mapped by objectToWorld (radius and
