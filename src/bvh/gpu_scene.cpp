@@ -1,6 +1,7 @@
 // Packs a wp::Scene into the GPU buffers of layout.h: one bottom-level BVH per mesh shared by
 // its instances, a top-level BVH over the instances, and the power-proportional light table.
 #include "bvh/gpu_scene.h"
+#include "bvh/gpu_scene_parts.h"
 
 #include <array>
 #include <chrono>
@@ -39,47 +40,6 @@ void setChild(glm::vec4& lo, glm::vec4& hi, const Aabb& bounds, uint32_t index, 
 
 void setEmptyChild(glm::vec4& lo, glm::vec4& hi) {
   setChild(lo, hi, Aabb{}, WP_INVALID, 0);
-}
-
-// Appends `bvh` in the GPU layout, one node per interior node (leaves live in their parent),
-// leaf ranges offset by primBase. Returns the absolute index of the root.
-uint32_t appendNodes(const Bvh& bvh, uint32_t primBase, std::vector<gpu::BvhNode>& out) {
-  uint32_t base = static_cast<uint32_t>(out.size());
-  if (bvh.nodes.size() <= 1) {
-    gpu::BvhNode& node = out.emplace_back();
-    if (bvh.nodes.empty()) {
-      setEmptyChild(node.leftMin, node.leftMax);
-    } else {
-      const Bvh::Node& leaf = bvh.nodes[0];
-      setChild(node.leftMin, node.leftMax, leaf.bounds, primBase + leaf.index, leaf.count);
-    }
-    setEmptyChild(node.rightMin, node.rightMax);
-    return base;
-  }
-  std::vector<uint32_t> gpuIndex(bvh.nodes.size(), WP_INVALID);
-  uint32_t interiorCount = 0;
-  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
-    if (!bvh.nodes[i].isLeaf()) {
-      gpuIndex[i] = base + interiorCount++;
-    }
-  }
-  out.resize(base + interiorCount);
-  auto childIndex = [&](uint32_t c) {
-    const Bvh::Node& child = bvh.nodes[c];
-    return child.isLeaf() ? primBase + child.index : gpuIndex[c];
-  };
-  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
-    const Bvh::Node& n = bvh.nodes[i];
-    if (n.isLeaf()) {
-      continue;
-    }
-    gpu::BvhNode& g = out[gpuIndex[i]];
-    const Bvh::Node& left = bvh.nodes[n.index];
-    const Bvh::Node& right = bvh.nodes[n.index + 1];
-    setChild(g.leftMin, g.leftMax, left.bounds, childIndex(n.index), left.count);
-    setChild(g.rightMin, g.rightMax, right.bounds, childIndex(n.index + 1), right.count);
-  }
-  return base;
 }
 
 Aabb transformBox(const glm::mat4& m, const Aabb& b) {
@@ -149,11 +109,6 @@ double seconds(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-struct PackedMesh {
-  Aabb bounds;                     // object space
-  std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
-};
-
 // Vertex normals, TEXCOORD_0 and COLOR_0 of triangle t (zero normals and uvs, white, where
 // the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
@@ -174,52 +129,6 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
     shading.colors[k] = bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
   }
   return shading;
-}
-
-// Builds the bottom-level BVH of `mesh` and appends its nodes, triangles and range to `out`;
-// adds the build time to out.bvhBuildSeconds and its triangle-weighted SAH cost to weightedSah.
-PackedMesh packMesh(const Scene& scene, const Mesh& mesh, GpuScene& out, double& weightedSah) {
-  PackedMesh packed;
-  size_t n = mesh.triangleCount();
-  std::vector<Aabb> bounds(n);
-  std::vector<glm::vec3> centroids(n);
-  std::vector<uint32_t> ordinal(n, WP_INVALID);
-  for (size_t t = 0; t < n; ++t) {
-    Triangle v = triangleOf(mesh, t);
-    for (const glm::vec3& p : v) {
-      bounds[t].grow(p);
-    }
-    centroids[t] = (v[0] + v[1] + v[2]) * (1.0f / 3.0f);
-    glm::vec3 normal = glm::cross(v[1] - v[0], v[2] - v[0]);
-    bool degenerate = !(glm::dot(normal, normal) > 0.0f) || !isFinite(normal);
-    if (scene.materials[mesh.materials[t]].isEmissive() && !degenerate) {
-      ordinal[t] = static_cast<uint32_t>(packed.emitters.size());
-      packed.emitters.push_back(static_cast<uint32_t>(t));
-    }
-  }
-
-  BvhBuildOptions options;
-  options.maxLeafSize = kMeshLeafSize;
-  options.maxDepth = WP_BVH_MAX_DEPTH;
-  auto start = Clock::now();
-  Bvh bvh = buildBvh(bounds, centroids, options);
-  out.bvhBuildSeconds += seconds(start);
-  weightedSah += static_cast<double>(sahCost(bvh)) * static_cast<double>(n);
-  if (!bvh.nodes.empty()) {
-    packed.bounds = bvh.nodes[0].bounds;
-  }
-
-  GpuMeshRange& range = out.meshes.emplace_back();
-  range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
-  range.triangleCount = static_cast<uint32_t>(n);
-  range.rootNode = appendNodes(bvh, range.firstTriangle, out.nodes);
-  for (uint32_t t : bvh.primIndices) {
-    Triangle v = triangleOf(mesh, t);
-    out.triangles.push_back({glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
-                             glm::uvec4(mesh.materials[t], ordinal[t], 0u, 0u)});
-    out.triangleShading.push_back(shadingOf(mesh, t));
-  }
-  return packed;
 }
 
 // Instances before the top-level build: their GPU record, world bounds and source.
@@ -248,9 +157,9 @@ struct InstanceCandidates {
 };
 
 // Appends the world-space lights of one mesh instance and their selection weights.
-void appendLights(const Scene& scene, const Mesh& mesh, const PackedMesh& packed, const glm::mat4& toWorld,
-                  std::vector<gpu::GpuLight>& lights, std::vector<double>& power) {
-  for (uint32_t t : packed.emitters) {
+void appendLights(const Scene& scene, const Mesh& mesh, const std::vector<uint32_t>& emitters,
+                  const glm::mat4& toWorld, std::vector<gpu::GpuLight>& lights, std::vector<double>& power) {
+  for (uint32_t t : emitters) {
     Triangle v = triangleOf(mesh, t);
     for (glm::vec3& p : v) {
       p = glm::vec3(toWorld * glm::vec4(p, 1.0f));
@@ -263,39 +172,121 @@ void appendLights(const Scene& scene, const Mesh& mesh, const PackedMesh& packed
   }
 }
 
-// Uploads the sky and sets the probability that next event estimation samples it rather
-// than the triangles: in proportion to power, the sky's through the scene's bounding sphere
-// and the triangles' pi * luminance * area (per emitting side).
-void packSky(const Scene& scene, double trianglePower, GpuScene& out) {
+// Uploads the sky (a black texel, never sampled, without one).
+void packSky(const Scene& scene, GpuScene& out) {
   EnvironmentMap sky = scene.sky.width > 0 ? scene.sky : makeEnvironmentMap(1, 1, {glm::vec3(0.0f)});
   out.skyRadiance = sky.radiance;
   out.skyMarginal = sky.marginalCdf;
   out.skyConditional = sky.conditionalCdf;
   out.sky = gpu::makeEnvironment(sky.width, sky.height, scene.skyIntensity, scene.skyRotation);
+}
+
+// Sets the probability that next event estimation samples the sky rather than the
+// triangles: in proportion to power, the sky's through the scene's bounding sphere and the
+// triangles' pi * luminance * area (per emitting side).
+void setSkyProbability(const Scene& scene, double trianglePower, GpuScene& out) {
   double radius = 0.5 * glm::length(out.boundsMax - out.boundsMin);
-  double skyPower = scene.sky.width > 0 ? environmentPower(sky, scene.skyIntensity, radius > 0.0 ? radius : 1.0) : 0.0;
+  double skyPower =
+      scene.sky.width > 0 ? environmentPower(scene.sky, scene.skyIntensity, radius > 0.0 ? radius : 1.0) : 0.0;
   double total = skyPower + std::numbers::pi * trianglePower;
   out.sky.transform.z = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
 }
 
 }  // namespace
 
-GpuScene packScene(const Scene& scene) {
-  GpuScene out;
-  double weightedSah = 0.0;
-  std::vector<PackedMesh> packed;
-  for (const Mesh& mesh : scene.meshes) {
-    packed.push_back(packMesh(scene, mesh, out, weightedSah));
-  }
-  out.triangleCount = out.triangles.size();
-  out.sahCost = out.triangleCount ? weightedSah / static_cast<double>(out.triangleCount) : 0.0;
+namespace pack_detail {
 
+MeshPrimitives meshPrimitives(const Scene& scene, const Mesh& mesh) {
+  MeshPrimitives prims;
+  size_t n = mesh.triangleCount();
+  prims.bounds.resize(n);
+  prims.centroids.resize(n);
+  prims.ordinal.assign(n, WP_INVALID);
+  for (size_t t = 0; t < n; ++t) {
+    Triangle v = triangleOf(mesh, t);
+    for (const glm::vec3& p : v) {
+      prims.bounds[t].grow(p);
+    }
+    prims.centroids[t] = (v[0] + v[1] + v[2]) * (1.0f / 3.0f);
+    glm::vec3 normal = glm::cross(v[1] - v[0], v[2] - v[0]);
+    bool degenerate = !(glm::dot(normal, normal) > 0.0f) || !isFinite(normal);
+    if (scene.materials[mesh.materials[t]].isEmissive() && !degenerate) {
+      prims.ordinal[t] = static_cast<uint32_t>(prims.emitters.size());
+      prims.emitters.push_back(static_cast<uint32_t>(t));
+    }
+  }
+  return prims;
+}
+
+Bvh buildMeshBvh(const MeshPrimitives& prims) {
+  BvhBuildOptions options;
+  options.maxLeafSize = kMeshLeafSize;
+  options.maxDepth = WP_BVH_MAX_DEPTH;
+  return buildBvh(prims.bounds, prims.centroids, options);
+}
+
+uint32_t gpuNodeCount(const Bvh& bvh) {
+  // A binary tree of n nodes has (n - 1) / 2 interior ones; leaves live in their parent.
+  return bvh.nodes.size() <= 1 ? 1u : static_cast<uint32_t>((bvh.nodes.size() - 1) / 2);
+}
+
+void writeNodes(const Bvh& bvh, uint32_t primBase, uint32_t base, std::vector<gpu::BvhNode>& out) {
+  if (bvh.nodes.size() <= 1) {
+    gpu::BvhNode& node = out[base];
+    if (bvh.nodes.empty()) {
+      setEmptyChild(node.leftMin, node.leftMax);
+    } else {
+      const Bvh::Node& leaf = bvh.nodes[0];
+      setChild(node.leftMin, node.leftMax, leaf.bounds, primBase + leaf.index, leaf.count);
+    }
+    setEmptyChild(node.rightMin, node.rightMax);
+    return;
+  }
+  std::vector<uint32_t> gpuIndex(bvh.nodes.size(), WP_INVALID);
+  uint32_t interiorCount = 0;
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    if (!bvh.nodes[i].isLeaf()) {
+      gpuIndex[i] = base + interiorCount++;
+    }
+  }
+  auto childIndex = [&](uint32_t c) {
+    const Bvh::Node& child = bvh.nodes[c];
+    return child.isLeaf() ? primBase + child.index : gpuIndex[c];
+  };
+  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    const Bvh::Node& n = bvh.nodes[i];
+    if (n.isLeaf()) {
+      continue;
+    }
+    gpu::BvhNode& g = out[gpuIndex[i]];
+    const Bvh::Node& left = bvh.nodes[n.index];
+    const Bvh::Node& right = bvh.nodes[n.index + 1];
+    setChild(g.leftMin, g.leftMax, left.bounds, childIndex(n.index), left.count);
+    setChild(g.rightMin, g.rightMax, right.bounds, childIndex(n.index + 1), right.count);
+  }
+}
+
+void writeTriangles(const Mesh& mesh, const Bvh& bvh, const MeshPrimitives& prims, uint32_t firstTriangle,
+                    GpuScene& out) {
+  for (size_t i = 0; i < bvh.primIndices.size(); ++i) {
+    uint32_t t = bvh.primIndices[i];
+    Triangle v = triangleOf(mesh, t);
+    out.triangles[firstTriangle + i] = {glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f),
+                                        glm::vec4(v[2] - v[0], 0.0f),
+                                        glm::uvec4(mesh.materials[t], prims.ordinal[t], 0u, 0u)};
+    out.triangleShading[firstTriangle + i] = shadingOf(mesh, t);
+  }
+}
+
+InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMesh> meshes, GpuScene& out) {
+  InstanceLevelSeconds time;
+  auto start = Clock::now();
   InstanceCandidates candidates;
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const MeshInstance& inst = scene.instances[i];
     const GpuMeshRange& range = out.meshes[inst.mesh];
     if (range.triangleCount > 0) {
-      candidates.add(inst.objectToWorld, packed[inst.mesh].bounds,
+      candidates.add(inst.objectToWorld, meshes[inst.mesh].bounds,
                      glm::uvec4(WP_INSTANCE_MESH, range.rootNode, 0u, 0u), inst.mesh,
                      "instance " + std::to_string(i) + " of mesh '" + scene.meshes[inst.mesh].name + "'");
     }
@@ -313,26 +304,28 @@ GpuScene packScene(const Scene& scene) {
     centers.push_back(b.center());
     sceneBounds.grow(b);
   }
-  if (!sceneBounds.isEmpty()) {
-    out.boundsMin = sceneBounds.min;
-    out.boundsMax = sceneBounds.max;
-  }
+  out.boundsMin = sceneBounds.isEmpty() ? glm::vec3(0.0f) : sceneBounds.min;
+  out.boundsMax = sceneBounds.isEmpty() ? glm::vec3(0.0f) : sceneBounds.max;
   BvhBuildOptions options;
   options.maxLeafSize = kInstanceLeafSize;
   options.maxDepth = WP_BVH_MAX_DEPTH;
-  auto start = Clock::now();
   Bvh tlas = buildBvh(candidates.worldBounds, centers, options);
-  out.bvhBuildSeconds += seconds(start);
-  out.tlasRoot = appendNodes(tlas, 0, out.nodes);
+  out.tlasRoot = static_cast<uint32_t>(out.nodes.size());
+  out.nodes.resize(out.nodes.size() + gpuNodeCount(tlas));
+  writeNodes(tlas, 0, out.tlasRoot, out.nodes);
+  time.tlas = seconds(start);
 
   // Instances in top-level leaf order, each mesh instance followed by its block of lights.
+  start = Clock::now();
+  out.instances.clear();
+  out.lights.clear();
   std::vector<double> power;
   for (uint32_t c : tlas.primIndices) {
     gpu::GpuInstance inst = candidates.records[c];
     uint32_t mesh = candidates.mesh[c];
     if (mesh != WP_INVALID) {
       inst.info.z = static_cast<uint32_t>(out.lights.size());
-      appendLights(scene, scene.meshes[mesh], packed[mesh], candidates.objectToWorld[c], out.lights, power);
+      appendLights(scene, scene.meshes[mesh], meshes[mesh].emitters, candidates.objectToWorld[c], out.lights, power);
     }
     out.instances.push_back(inst);
   }
@@ -341,7 +334,46 @@ GpuScene packScene(const Scene& scene) {
   for (double p : power) {
     trianglePower += p;
   }
-  packSky(scene, trianglePower, out);
+  setSkyProbability(scene, trianglePower, out);
+  time.lights = seconds(start);
+  return time;
+}
+
+GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
+  GpuScene out;
+  double weightedSah = 0.0;
+  meshes.clear();
+  for (const Mesh& mesh : scene.meshes) {
+    MeshPrimitives prims = meshPrimitives(scene, mesh);
+    PackedMesh& packed = meshes.emplace_back();
+    auto start = Clock::now();
+    Bvh bvh = buildMeshBvh(prims);
+    out.bvhBuildSeconds += seconds(start);
+    packed.sah = sahCost(bvh);
+    weightedSah += static_cast<double>(packed.sah) * static_cast<double>(mesh.triangleCount());
+    if (!bvh.nodes.empty()) {
+      packed.bounds = bvh.nodes[0].bounds;
+    }
+    packed.emitters = std::move(prims.emitters);
+
+    GpuMeshRange& range = out.meshes.emplace_back();
+    range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
+    range.triangleCount = static_cast<uint32_t>(mesh.triangleCount());
+    range.rootNode = static_cast<uint32_t>(out.nodes.size());
+    out.nodes.resize(out.nodes.size() + gpuNodeCount(bvh));
+    writeNodes(bvh, range.firstTriangle, range.rootNode, out.nodes);
+    out.triangles.resize(out.triangles.size() + range.triangleCount);
+    out.triangleShading.resize(out.triangles.size());
+    writeTriangles(mesh, bvh, prims, range.firstTriangle, out);
+    if (mesh.deforming) {
+      packed.bvh = std::move(bvh);
+    }
+  }
+  out.triangleCount = out.triangles.size();
+  out.sahCost = out.triangleCount ? weightedSah / static_cast<double>(out.triangleCount) : 0.0;
+
+  packSky(scene, out);
+  out.bvhBuildSeconds += packInstances(scene, meshes, out).tlas;
 
   for (const Texture& texture : scene.textures) {
     const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
@@ -366,6 +398,13 @@ GpuScene packScene(const Scene& scene) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});
   }
   return out;
+}
+
+}  // namespace pack_detail
+
+GpuScene packScene(const Scene& scene) {
+  std::vector<pack_detail::PackedMesh> meshes;
+  return pack_detail::packSceneParts(scene, meshes);
 }
 
 }  // namespace wp
