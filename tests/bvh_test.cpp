@@ -837,10 +837,13 @@ TEST(SceneUpdater, MatchesPackSceneOfThePose) {
     wp::SceneUpdater updater(anim.at(0.0f), ratio);
     uint32_t rebuilds = 0;
     int failures = 0, hits = 0;
+    const uint32_t staticRoot = updater.scene().meshes[1].rootNode;
+    bool relaidOut = false;
     for (float t : {0.1f, 0.5f, 0.9f}) {
       wp::Scene posed = anim.at(t);
       const wp::GpuScene& got = updater.update(posed);
       rebuilds += updater.times().rebuilds;
+      relaidOut = relaidOut || got.meshes[1].rootNode != staticRoot;
       wp::GpuScene want = wp::packScene(posed);
       // The top level is built from the same boxes, so instances and lights agree bit for bit
       // (up to the mesh roots in the instance records when a rebuild moved them).
@@ -887,6 +890,8 @@ TEST(SceneUpdater, MatchesPackSceneOfThePose) {
     EXPECT_EQ(failures, 0) << "ratio " << ratio;
     EXPECT_GT(hits, 3 * 5000 / 2);
     EXPECT_EQ(rebuilds > 0, ratio == 1.0f) << "ratio " << ratio;
+    // A rebuild of mesh 0 with another node count must have moved the static meshes' nodes.
+    EXPECT_EQ(relaidOut, ratio == 1.0f) << "ratio " << ratio;
   }
 }
 

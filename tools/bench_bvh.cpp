@@ -2,7 +2,6 @@
 // sphere; with --sweep also the exhaustive sweep builder on a smaller one for comparison.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -10,46 +9,18 @@
 #include <vector>
 
 #include "bvh/bvh_builder.h"
+#include "bvh/gpu_scene_parts.h"
 #include "bvh/sweep_builder.h"
+#include "displaced_sphere.h"
 
 namespace {
 
-struct Primitives {
-  std::vector<wp::Aabb> bounds;
-  std::vector<glm::vec3> centroids;
-};
+using Primitives = wp::pack_detail::MeshPrimitives;
 
-// A UV sphere of about `triangles` triangles whose radius is displaced by a few octaves of
-// sines, so the surface is bumpy at several scales, like a scanned model (deterministic).
-Primitives displacedSphere(size_t triangles) {
-  int rings = std::max(2, static_cast<int>(std::sqrt(static_cast<double>(triangles) / 4.0)));
-  int segments = 2 * rings;
-  auto vertex = [&](int ring, int segment) {
-    float theta = 3.14159265f * static_cast<float>(ring) / static_cast<float>(rings);
-    float phi = 6.28318531f * static_cast<float>(segment) / static_cast<float>(segments);
-    glm::vec3 dir(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-    float r = 1.0f + 0.1f * std::sin(7.0f * dir.x) * std::sin(5.0f * dir.y + 1.0f) +
-              0.03f * std::sin(31.0f * dir.z + 2.0f * dir.x) + 0.01f * std::sin(97.0f * dir.y);
-    return r * dir;
-  };
-  Primitives p;
-  auto add = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-    wp::Aabb box;
-    box.grow(a);
-    box.grow(b);
-    box.grow(c);
-    p.bounds.push_back(box);
-    p.centroids.push_back((a + b + c) * (1.0f / 3.0f));
-  };
-  for (int ring = 0; ring < rings; ++ring) {
-    for (int segment = 0; segment < segments; ++segment) {
-      glm::vec3 a = vertex(ring, segment), b = vertex(ring, segment + 1);
-      glm::vec3 c = vertex(ring + 1, segment), d = vertex(ring + 1, segment + 1);
-      add(a, c, b);
-      add(b, c, d);
-    }
-  }
-  return p;
+Primitives primitivesOf(const wp::Mesh& mesh) {
+  wp::Scene scene;
+  scene.materials.resize(1);
+  return wp::pack_detail::meshPrimitives(scene, mesh);
 }
 
 using BuildFn = wp::Bvh (*)(std::span<const wp::Aabb>, std::span<const glm::vec3>,
@@ -99,7 +70,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  Primitives big = displacedSphere(triangles);
+  Primitives big = primitivesOf(wp::bench::displacedSphere(triangles));
   wp::BvhBuildOptions single;
   single.threads = 1;
   wp::BvhBuildOptions parallel;  // every hardware thread
@@ -109,7 +80,7 @@ int main(int argc, char** argv) {
   report("binned, all threads", big.bounds.size(), measure(wp::buildBvh, big, parallel, runs));
 
   if (sweep) {
-    Primitives small = displacedSphere(sweepTriangles);
+    Primitives small = primitivesOf(wp::bench::displacedSphere(sweepTriangles));
     Result binned = measure(wp::buildBvh, small, single, runs);
     Result full = measure(wp::buildBvhSweep, small, single, 1);
     report("binned, 1 thread", small.bounds.size(), binned);
