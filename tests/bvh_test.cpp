@@ -869,6 +869,16 @@ TEST(SceneUpdater, MatchesPackSceneOfThePose) {
                                  return sameBytes(std::vector{x}, std::vector{y});
                                }));
       }
+      // The deforming mesh holds the same triangle and shading records in another order.
+      auto recordsOfMesh0 = [](const wp::GpuScene& g, const auto& records) {
+        auto first = records.begin() + g.meshes[0].firstTriangle;
+        std::vector sorted(first, first + g.meshes[0].triangleCount);
+        std::sort(sorted.begin(), sorted.end(),
+                  [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof(x)) < 0; });
+        return sorted;
+      };
+      EXPECT_TRUE(sameBytes(recordsOfMesh0(got, got.triangles), recordsOfMesh0(want, want.triangles)));
+      EXPECT_TRUE(sameBytes(recordsOfMesh0(got, got.triangleShading), recordsOfMesh0(want, want.triangleShading)));
       // Same hits: the same triangle records under the same transforms give the same t, bit
       // for bit, unless two surfaces tie (then either may win).
       for (int r = 0; r < 5000; ++r) {
