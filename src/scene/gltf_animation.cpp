@@ -55,7 +55,8 @@ void fitWidth(const Context& ctx, AnimationSampler& sampler, size_t width, const
     fail(ctx, where,
          "the output has " + std::to_string(sampler.output.size()) + " numbers but " +
              std::to_string(sampler.input.size()) + " keyframes" + (perKeyframe == 3 ? " (x3 for CUBICSPLINE)" : "") +
-             " of " + std::to_string(width) + " need " + std::to_string(expected) + "; re-export the animation");
+             " of " + std::to_string(width) + " numbers need " + std::to_string(expected) +
+             "; re-export the animation");
   }
   sampler.width = width;
 }
