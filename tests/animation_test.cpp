@@ -109,7 +109,8 @@ TEST(AnimationSampling, SlerpOfDifferentAxesMatchesTheClosedForm) {
   const double u = 0.35;
   // slerp(q0, q1, u) = sin((1 - u) theta) / sin(theta) q0 + sin(u theta) / sin(theta) q1, cos(theta) = q0 . q1 > 0
   const double theta = std::acos(glm::dot(q0, q1));
-  const glm::dquat expected = q0 * (std::sin((1 - u) * theta) / std::sin(theta)) + q1 * (std::sin(u * theta) / std::sin(theta));
+  const glm::dquat expected =
+      q0 * (std::sin((1 - u) * theta) / std::sin(theta)) + q1 * (std::sin(u * theta) / std::sin(theta));
   expectSameRotation(sampleRotation(s, 2 + u * 2), expected);
 }
 

@@ -185,7 +185,8 @@ TEST(BadAnimation, FlagsAreRejected) {
     expectOneErrorLine(runWavepath(args, {}, 60), "wavepath --help", 2);
   }
   // Several frames into one file would overwrite each other.
-  RunResult single = runWavepath({"render", scene.string(), "-o", (dir / "frame.png").string(), "--frames", "0..2"}, {}, 60);
+  RunResult single =
+      runWavepath({"render", scene.string(), "-o", (dir / "frame.png").string(), "--frames", "0..2"}, {}, 60);
   expectOneErrorLine(single, "has no '#' for the frame number");
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }

@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
   for (int y = 0; y + 1 < side; ++y) {
     for (int x = 0; x + 1 < side; ++x) {
       const uint32_t a = uint32_t(y * side + x);
-      mesh.indices.insert(mesh.indices.end(), {a, a + 1, a + uint32_t(side), a + 1, a + uint32_t(side) + 1, a + uint32_t(side)});
+      const uint32_t b = a + uint32_t(side);  // the vertex above a
+      mesh.indices.insert(mesh.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
     }
   }
   mesh.materials.assign(mesh.indices.size() / 3, 0);

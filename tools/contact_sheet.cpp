@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
   }
   const int sheetHeight = int(sheet.size() / 3 / size_t(sheetWidth));
   if (!stbi_write_png(output.c_str(), sheetWidth, sheetHeight, 3, sheet.data(), sheetWidth * 3)) {
-    std::fprintf(stderr, "wavepath-contact-sheet: error: cannot write %s; check the directory exists\n", output.c_str());
+    std::fprintf(stderr, "wavepath-contact-sheet: error: cannot write %s; check the directory exists\n",
+                 output.c_str());
     return 1;
   }
   return 0;

@@ -164,9 +164,9 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                 "kernels with warnings as errors and check the queue counters; fail on any error");
   cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
   addCameraFlags(*cmd, o.camera);
-  CLI::Option* time =
-      cmd->add_option("--time", o.time, "Render the scene's animations at this time, in seconds (default: the rest pose)")
-          ->check(finiteNumber(false));
+  CLI::Option* time = cmd->add_option("--time", o.time,
+                                      "Render the scene's animations at this time, in seconds (default: the rest pose)")
+                           ->check(finiteNumber(false));
   cmd->add_option("--frames", o.frames,
                   "Render frames A..B (inclusive) of the animations, frame n at n/fps seconds, to the -o pattern, "
                   "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")

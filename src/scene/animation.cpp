@@ -94,7 +94,9 @@ glm::dquat sampleRotation(const AnimationSampler& s, double seconds) {
 double animationDuration(const std::vector<Animation>& animations) {
   double duration = 0.0;
   for (const Animation& animation : animations) {
-    for (const AnimationSampler& sampler : animation.samplers) duration = std::max(duration, double(sampler.input.back()));
+    for (const AnimationSampler& sampler : animation.samplers) {
+      duration = std::max(duration, double(sampler.input.back()));
+    }
   }
   return duration;
 }

@@ -146,7 +146,8 @@ std::vector<Animation> readAnimations(const Context& ctx, const std::vector<size
     Animation animation;
     animation.name = gltfAnimation.name;
     for (size_t s = 0; s < gltfAnimation.samplers.size(); ++s) {
-      animation.samplers.push_back(readSampler(ctx, gltfAnimation.samplers[s], where + ": sampler " + std::to_string(s)));
+      const std::string samplerWhere = where + ": sampler " + std::to_string(s);
+      animation.samplers.push_back(readSampler(ctx, gltfAnimation.samplers[s], samplerWhere));
     }
     std::vector<bool> widthFixed(animation.samplers.size(), false);
     for (size_t c = 0; c < gltfAnimation.channels.size(); ++c) {

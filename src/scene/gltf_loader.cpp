@@ -143,14 +143,16 @@ private:
     if (rest.hasMatrix && node.matrix.size() == 16) {
       for (int i = 0; i < 16; ++i) rest.matrix[i / 4][i % 4] = node.matrix[static_cast<size_t>(i)];
     }
-    if (node.translation.size() == 3) rest.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+    const std::vector<double>& t = node.translation;
+    if (t.size() == 3) rest.translation = glm::dvec3(t[0], t[1], t[2]);
     if (node.rotation.size() == 4) {
       const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
       if (glm::length(q) > 0.0) rest.rotation = q / glm::length(q);
     }
     if (node.scale.size() == 3) rest.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
+    const bool hasMesh = node.mesh >= 0 && static_cast<size_t>(node.mesh) < ctx_.model.meshes.size();
     const std::vector<double>& weights =
-        !node.weights.empty() || node.mesh < 0 ? node.weights : ctx_.model.meshes[node.mesh].weights;
+        !node.weights.empty() || !hasMesh ? node.weights : ctx_.model.meshes[static_cast<size_t>(node.mesh)].weights;
     if (!node.weights.empty() && node.weights.size() != morphTargets) {
       gltf::fail(ctx_, gltf::describe("node", index, node.name),
                  "it has " + std::to_string(node.weights.size()) + " morph weights but its mesh " +
@@ -171,7 +173,9 @@ private:
     }
     if (node.mesh != -1) addInstance(where, index, world);
     if (node.camera != -1) addCamera(where, index, world);
-    if (const std::optional<gltf::ShapeSpec> shape = gltf::readShape(ctx_, index)) addShape(where, index, *shape, world);
+    if (const std::optional<gltf::ShapeSpec> shape = gltf::readShape(ctx_, index)) {
+      addShape(where, index, *shape, world);
+    }
   }
 
   void addInstance(const std::string& where, size_t node, const glm::mat4& world) {
@@ -252,7 +256,8 @@ private:
     const int index = ctx_.model.nodes[node].camera;
     const size_t cameraCount = ctx_.model.cameras.size();
     if (index < 0 || static_cast<size_t>(index) >= cameraCount) {
-      gltf::fail(ctx_, nodeWhere, "camera " + gltf::missingIndex(index, cameraCount, "cameras") + "; re-export the file");
+      gltf::fail(ctx_, nodeWhere,
+                 "camera " + gltf::missingIndex(index, cameraCount, "cameras") + "; re-export the file");
     }
     if (scene_.hasCamera) return;  // the first perspective camera of the walk wins
     const tinygltf::Camera& camera = ctx_.model.cameras[static_cast<size_t>(index)];

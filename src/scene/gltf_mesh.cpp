@@ -234,8 +234,9 @@ private:
     if (found != target.end()) {
       delta = readVec3Attribute(ctx_, found->second, where, attribute);
       if (delta.size() != count) {
-        fail(ctx_, where, std::string(attribute) + " has " + std::to_string(delta.size()) + " vertices but the primitive " +
-                              std::to_string(count) + "; re-export the morph target");
+        fail(ctx_, where,
+             std::string(attribute) + " has " + std::to_string(delta.size()) + " vertices but the primitive " +
+                 std::to_string(count) + "; re-export the morph target");
       }
     }
     out.insert(out.end(), delta.begin(), delta.end());
