@@ -211,8 +211,9 @@ int runRender(RenderOptions o) {
   if (!o.frames.empty() && !scene.animation) {
     note(o.scene + " has no animation: every frame is the same image");
   } else if (!o.frames.empty() && frames.last / o.fps > scene.animation->duration) {
-    note(o.scene + "'s animations end at " + std::to_string(scene.animation->duration) +
-         " s: later frames hold their last pose");
+    char duration[32];
+    std::snprintf(duration, sizeof(duration), "%g", scene.animation->duration);
+    note(o.scene + "'s animations end at " + duration + " s: later frames hold their last pose");
   }
   BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);
