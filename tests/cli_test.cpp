@@ -134,6 +134,63 @@ TEST_F(BadScene, NothingRenderable) {
                  "nothing");
 }
 
+std::filesystem::path testData(const char* name) { return sourceDirectory() / "tests" / "data" / name; }
+
+TEST(Animation, TheValidAnimatedFilesRender) {
+  // The control case of BadAnimation: the files the bad ones are edited from render.
+  for (const char* name : {"anim_trs.gltf", "anim_morph.gltf", "anim_skin.gltf"}) {
+    std::filesystem::path out = scratchDirectory("animated") / "image.png";
+    RunResult r = runWavepath({"render", testData(name).string(), "-o", out.string(), "--time", "0.5", "--width", "8",
+                               "--height", "8", "--spp", "1"});
+    EXPECT_EQ(r.exitCode, 0) << name << ": " << r.err;
+    EXPECT_TRUE(std::filesystem::exists(out)) << name;
+  }
+}
+
+TEST(BadAnimation, IsOneErrorLineNamingTheDefect) {
+  // tools/make_animation_tests.py writes each file with one defect.
+  const std::vector<std::pair<const char*, const char*>> cases = {
+      {"bad_channel_node.gltf", "channel 0: its target node 99 does not exist"},
+      {"bad_input_order.gltf", "sampler 0: input times are not strictly increasing"},
+      {"bad_output_count.gltf", "the output has 9 numbers but 2 keyframes of 3 numbers need 6"},
+      {"bad_interpolation.gltf", "interpolation 'SMOOTH' is not LINEAR, STEP or CUBICSPLINE"},
+      {"bad_morph_count.gltf", "primitive 1 has 1 morph targets but an earlier one 2"},
+      {"bad_mesh_weights.gltf", "it has 3 default weights but 2 morph targets"},
+      {"bad_weights_count.gltf", "the output has 6 numbers but 2 keyframes of 2 numbers need 4"},
+  };
+  for (const auto& [name, phrase] : cases) {
+    SCOPED_TRACE(name);
+    Outcome o = renderExpectingFailure(testData(name), {"--time", "0.5"});
+    expectOneErrorLine(o.run, phrase);
+    EXPECT_FALSE(std::filesystem::exists(o.output));
+  }
+}
+
+TEST(BadAnimation, FlagsAreRejected) {
+  const std::filesystem::path scene = testData("anim_trs.gltf");
+  const std::filesystem::path dir = scratchDirectory("bad-frames");
+  const std::string pattern = (dir / "frame_###.png").string();
+  for (const std::vector<std::string>& flags : std::vector<std::vector<std::string>>{
+           {"--frames", "3..1"},
+           {"--frames", "1..x"},
+           {"--frames", "-2..4"},
+           {"--frames", "0..2", "--fps", "0"},
+           {"--frames", "0..2", "--fps", "-24"},
+           {"--time", "nan"},
+           {"--time", "1", "--frames", "0..2"},
+       }) {
+    std::vector<std::string> args = {"render", scene.string(), "-o", pattern};
+    args.insert(args.end(), flags.begin(), flags.end());
+    SCOPED_TRACE(flags[1]);
+    expectOneErrorLine(runWavepath(args, {}, 60), "wavepath --help", 2);
+  }
+  // Several frames into one file would overwrite each other.
+  RunResult single =
+      runWavepath({"render", scene.string(), "-o", (dir / "frame.png").string(), "--frames", "0..2"}, {}, 60);
+  expectOneErrorLine(single, "has no '#' for the frame number");
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
 TEST(BadFlags, AreRejectedWithUsageHint) {
   std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
   for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{

@@ -1,6 +1,7 @@
 // The wavepath subcommands and their options.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "app/camera_options.h"
@@ -27,6 +28,9 @@ struct RenderOptions {
   std::string clDispatch = "readback";  // OpenCL only: how queue-sized launches are sized (ClDispatch)
   bool validate = false;  // validation (Vulkan: Khronos layer); also WAVEPATH_VALIDATION=1
   bool timings = false;   // per-stage GPU times, memory and BVH figures
+  std::optional<double> time;  // --time: seconds at which the scene is posed; unset: its rest pose
+  std::string frames;          // --frames A..B: an image sequence, frame n at n / fps seconds
+  double fps = 24.0;
 };
 
 // Adds `render` to the app; the options are filled in when it parses.

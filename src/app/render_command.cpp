@@ -12,13 +12,16 @@
 
 #include "app/backend_factory.h"
 #include "app/commands.h"
+#include "app/frame_sequence.h"
 #include "app/progress_bar.h"
 #include "bvh/gpu_scene.h"
 #include "bvh/instance_baking.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "image/image_io.h"
 #include "render/wavefront.h"
 #include "scene/gltf_loader.h"
+#include "scene/scene_animation.h"
 
 namespace wp {
 namespace {
@@ -51,6 +54,59 @@ void printTimings(const RenderStats& stats, const GpuScene& gpuScene) {
     std::printf(" %s %.1f%s", kernelName(Kernel(k)), stats.kernelMs[k], k + 1 < kKernelCount ? "," : "\n");
   }
   std::printf("peak memory: %.0f MiB\n", peakMemoryMiB());
+}
+
+// The GPU form of one pose of the scene. (An incremental update that reuses the bottom-level
+// BVHs of the previous pose belongs here.)
+GpuScene gpuSceneOf(const Scene& posed) { return packScene(bakeSingleUseMeshes(posed)); }
+
+// The frames to render (one, frame 0, when no sequence is asked for); the flags themselves
+// were checked when they were parsed.
+FrameRange framesToRender(const RenderOptions& o) {
+  if (o.frames.empty()) return {};
+  const FrameRange range = parseFrameRange(o.frames);
+  checkFramePattern(o.output, range);
+  return range;
+}
+
+// A CLI11 check that a number is finite and, with `positive`, above 0 (CLI11's own range
+// checks let NaN through).
+CLI::Validator finiteNumber(bool positive) {
+  return CLI::Validator(
+      [positive](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || (positive && !(value > 0.0))) {
+          return "'" + text + "' is not a " + (positive ? "number above 0" : "finite number");
+        }
+        return "";
+      },
+      positive ? "POSITIVE" : "NUMBER");
+}
+
+// Renders one pose of the scene on `backend` and writes it to `output`, with the summary line.
+void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, Scene scene,
+                 const std::string& output) {
+  auto wallStart = std::chrono::steady_clock::now();
+  GpuScene gpuScene = gpuSceneOf(scene);
+  applyCameraFlags(o.camera, scene.camera, gpuScene);
+  WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
+  ProgressBar bar;
+  RenderStats stats = renderer.render([&](double fraction) { bar.update(fraction); });
+  bar.finish();
+  RadianceImage image = renderer.image();
+  checkValidation(choice);
+  writeImage(output, image, displaySettings(o.camera, scene.camera.optics, image));
+
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  double rays = double(stats.extensionRays + stats.shadowRays);
+  std::printf("%s: %ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
+              "(%.1f M extension + %.1f M shadow rays) on %s\n",
+              output.c_str(), o.settings.width, o.settings.height, o.settings.samplesPerPixel, stats.seconds, wall,
+              double(stats.samples) / stats.seconds * 1e-6, rays / stats.seconds * 1e-6,
+              double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend.deviceName().c_str());
+  if (o.timings) {
+    printTimings(stats, gpuScene);
+  }
 }
 
 }  // namespace
@@ -108,6 +164,24 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                 "kernels with warnings as errors and check the queue counters; fail on any error");
   cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
   addCameraFlags(*cmd, o.camera);
+  CLI::Option* time = cmd->add_option("--time", o.time,
+                                      "Render the scene's animations at this time, in seconds (default: the rest pose)")
+                           ->check(finiteNumber(false));
+  cmd->add_option("--frames", o.frames,
+                  "Render frames A..B (inclusive) of the animations, frame n at n/fps seconds, to the -o pattern, "
+                  "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              parseFrameRange(text);
+            } catch (const Error& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "A..B"))
+      ->excludes(time);
+  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(finiteNumber(true));
   cmd->add_option("--sky", o.sky, "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar");
   cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
   cmd->add_option("--sky-rotation", o.skyRotationDegrees, "Rotation of the sky about +y, in degrees");
@@ -119,13 +193,13 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
 }
 
 int runRender(RenderOptions o) {
-  auto wallStart = std::chrono::steady_clock::now();
   const char* validationEnv = std::getenv("WAVEPATH_VALIDATION");
   bool validate = o.validate || (validationEnv != nullptr && std::string(validationEnv) == "1");
   if (o.output.empty()) {
-    o.output = std::filesystem::path(o.scene).stem().string() + ".png";
+    o.output = std::filesystem::path(o.scene).stem().string() + (o.frames.empty() ? ".png" : "_####.png");
   }
-  checkOutputPath(o.output);
+  const FrameRange frames = framesToRender(o);
+  checkOutputPath(framePath(o.output, frames.first));
 
   Scene scene = loadScene(o.scene, o.sky.empty());
   if (!o.sky.empty()) {
@@ -134,28 +208,19 @@ int runRender(RenderOptions o) {
   scene.skyIntensity = o.skyIntensity;
   scene.skyRotation = glm::radians(o.skyRotationDegrees);
   resolveImageSize(o, scene);
-  GpuScene gpuScene = packScene(bakeSingleUseMeshes(scene));
-  applyCameraFlags(o.camera, scene.camera, gpuScene);
-
+  if (!o.frames.empty() && !scene.animation) {
+    note(o.scene + " has no animation: every frame is the same image");
+  } else if (!o.frames.empty() && frames.last / o.fps > scene.animation->duration) {
+    char duration[32];
+    std::snprintf(duration, sizeof(duration), "%g", scene.animation->duration);
+    note(o.scene + "'s animations end at " + duration + " s: later frames hold their last pose");
+  }
   BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);
-  WavefrontRenderer renderer(*backend, scene, gpuScene, o.settings);
-  ProgressBar bar;
-  RenderStats stats = renderer.render([&](double fraction) { bar.update(fraction); });
-  bar.finish();
-  RadianceImage image = renderer.image();
-  checkValidation(choice);
-  writeImage(o.output, image, displaySettings(o.camera, scene.camera.optics, image));
-
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-  double rays = double(stats.extensionRays + stats.shadowRays);
-  std::printf("%s: %ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
-              "(%.1f M extension + %.1f M shadow rays) on %s\n",
-              o.output.c_str(), o.settings.width, o.settings.height, o.settings.samplesPerPixel, stats.seconds, wall,
-              double(stats.samples) / stats.seconds * 1e-6, rays / stats.seconds * 1e-6,
-              double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend->deviceName().c_str());
-  if (o.timings) {
-    printTimings(stats, gpuScene);
+  for (uint32_t frame = frames.first;; ++frame) {
+    const std::optional<double> time = o.frames.empty() ? o.time : std::optional<double>(frame / o.fps);
+    renderFrame(o, choice, *backend, time ? poseScene(scene, *time) : scene, framePath(o.output, frame));
+    if (frame == frames.last) break;  // tested here, as frames.last may be the largest uint32_t
   }
   return 0;
 }

@@ -176,6 +176,79 @@ std::vector<glm::vec4> readColors(const Context& ctx, int index, const std::stri
   return colors;
 }
 
+FloatElements readFloats(const Context& ctx, int index, const std::string& where, const char* role,
+                         bool allowNormalized) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, role);
+  const int type = accessor.componentType;
+  const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
+  const bool matrix = accessor.type == TINYGLTF_TYPE_MAT2 || accessor.type == TINYGLTF_TYPE_MAT3 ||
+                      accessor.type == TINYGLTF_TYPE_MAT4;
+  const bool normalized = allowNormalized && !matrix && accessor.normalized &&
+                          (type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           type == TINYGLTF_COMPONENT_TYPE_SHORT || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  if (components <= 0 || (type != TINYGLTF_COMPONENT_TYPE_FLOAT && !normalized)) {
+    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
+         std::string(role) + " must be FLOAT" + (allowNormalized ? " or normalized integers" : "") + ", not " +
+             componentName(type) + " " + typeName(accessor.type) + "; re-export the file");
+  }
+  const size_t componentSize = static_cast<size_t>(tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(type)));
+  const ElementRange range = locate(ctx, index, where, componentSize * static_cast<size_t>(components));
+  FloatElements out{std::vector<float>(range.count * static_cast<size_t>(components)), static_cast<size_t>(components)};
+  for (size_t i = 0; i < range.count; ++i) {
+    const unsigned char* element = range.first + i * range.stride;
+    for (size_t c = 0; c < out.components; ++c) {
+      const unsigned char* bytes = element + c * componentSize;
+      float value = 0.0f;
+      // The decodings of glTF 2.0 section 3.11 (animation) for normalized integers.
+      switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, bytes, 4); break;
+        case TINYGLTF_COMPONENT_TYPE_BYTE: value = std::max(float(static_cast<int8_t>(bytes[0])) / 127.0f, -1.0f); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = float(bytes[0]) / 255.0f; break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+          int16_t v = 0;
+          std::memcpy(&v, bytes, 2);
+          value = std::max(float(v) / 32767.0f, -1.0f);
+          break;
+        }
+        default: {
+          uint16_t v = 0;
+          std::memcpy(&v, bytes, 2);
+          value = float(v) / 65535.0f;
+        }
+      }
+      if (!std::isfinite(value)) {
+        fail(ctx, where, "element " + std::to_string(i) + " of the " + role + " accessor " + std::to_string(index) +
+                             " is not finite; re-export the file");
+      }
+      out.values[i * out.components + c] = value;
+    }
+  }
+  return out;
+}
+
+std::vector<glm::uvec4> readJoints(const Context& ctx, int index, const std::string& where) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "JOINTS_0");
+  const int type = accessor.componentType;
+  if (accessor.type != TINYGLTF_TYPE_VEC4 ||
+      (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
+    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
+         std::string("JOINTS_0 must be VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT, not ") + componentName(type) + " " +
+             typeName(accessor.type) + "; re-export the file");
+  }
+  const size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : 2;
+  const ElementRange range = locate(ctx, index, where, 4 * size);
+  std::vector<glm::uvec4> joints(range.count);
+  for (size_t i = 0; i < range.count; ++i) {
+    const unsigned char* element = range.first + i * range.stride;
+    for (int c = 0; c < 4; ++c) {
+      uint16_t v = element[c * size];
+      if (size == 2) std::memcpy(&v, element + c * 2, 2);
+      joints[i][c] = v;
+    }
+  }
+  return joints;
+}
+
 std::vector<uint32_t> readIndices(const Context& ctx, int index, const std::string& where) {
   const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "indices");
   size_t size = 0;

@@ -26,6 +26,21 @@ std::vector<glm::vec2> readTexCoords(const Context& ctx, int accessor, const std
 // RGBA in [0, 1], alpha 1 for VEC3, with the same checks as readVec3Attribute.
 std::vector<glm::vec4> readColors(const Context& ctx, int accessor, const std::string& where);
 
+// The floats of an accessor, `components` per element (1 for SCALAR to 16 for MAT4).
+struct FloatElements {
+  std::vector<float> values;
+  size_t components = 0;
+};
+
+// Reads a FLOAT accessor of any type (animation keyframes, skin matrices, weights), or
+// with `allowNormalized` also a normalized BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT
+// vector decoded as glTF says; same checks as readVec3Attribute. `role` names it in messages.
+FloatElements readFloats(const Context& ctx, int accessor, const std::string& where, const char* role,
+                         bool allowNormalized);
+
+// Reads JOINTS_0 (VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT), with the same checks.
+std::vector<glm::uvec4> readJoints(const Context& ctx, int accessor, const std::string& where);
+
 // Reads a SCALAR accessor of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, with the same
 // checks as readVec3Attribute (the values themselves are checked by the caller).
 std::vector<uint32_t> readIndices(const Context& ctx, int accessor, const std::string& where);

@@ -48,18 +48,25 @@ struct VertexSource {
   int normal = -1;  // -1: none
   int uv = -1;      // TEXCOORD_0, -1: none
   int color = -1;   // COLOR_0, -1: none
+  // With morph targets or skins, the primitive: its targets and joints are read with its
+  // vertices, so its vertices are shared with no other primitive. -1 otherwise.
+  int primitive = -1;
 
   bool operator<(const VertexSource& other) const {
-    return std::tie(position, normal, uv, color) < std::tie(other.position, other.normal, other.uv, other.color);
+    return std::tie(position, normal, uv, color, primitive) <
+           std::tie(other.position, other.normal, other.uv, other.color, other.primitive);
   }
 };
 
 class MeshBuilder {
 public:
-  MeshBuilder(const Context& ctx, size_t meshIndex, uint32_t defaultMaterial)
-      : ctx_(ctx), gltfMesh_(ctx.model.meshes[meshIndex]), defaultMaterial_(defaultMaterial) {
+  MeshBuilder(const Context& ctx, size_t meshIndex, uint32_t defaultMaterial, MeshDeformation* deformation,
+              size_t morphTargets)
+      : ctx_(ctx), gltfMesh_(ctx.model.meshes[meshIndex]), defaultMaterial_(defaultMaterial),
+        deformation_(deformation) {
     where_ = describe("mesh", meshIndex, gltfMesh_.name);
     mesh_.name = gltfMesh_.name;
+    if (deformation_) deformation_->targets.resize(morphTargets);
   }
 
   Mesh build() {
@@ -94,8 +101,10 @@ private:
     const auto color = primitive.attributes.find("COLOR_0");
     const VertexSource source{position->second, normal == primitive.attributes.end() ? -1 : normal->second,
                               uv == primitive.attributes.end() ? -1 : uv->second,
-                              color == primitive.attributes.end() ? -1 : color->second};
+                              color == primitive.attributes.end() ? -1 : color->second,
+                              deformation_ ? static_cast<int>(p) : -1};
     const uint32_t vertexCount = addVertices(source, where);
+    if (deformation_) addDeformation(primitive, vertexCount, where);
     std::vector<uint32_t> sequence;
     if (primitive.indices == -1) {
       sequence.resize(vertexCount);
@@ -188,9 +197,55 @@ private:
     return count;
   }
 
+  // Appends the primitive's morph target deltas and skin weights for its `count` vertices.
+  void addDeformation(const tinygltf::Primitive& primitive, uint32_t count, const std::string& where) {
+    for (size_t t = 0; t < deformation_->targets.size(); ++t) {
+      MorphTarget& target = deformation_->targets[t];
+      const std::string targetWhere = where + " morph target " + std::to_string(t);
+      appendDelta(primitive.targets[t], "POSITION", count, targetWhere, target.positions);
+      appendDelta(primitive.targets[t], "NORMAL", count, targetWhere, target.normals);
+    }
+    const auto joints = primitive.attributes.find("JOINTS_0");
+    const auto weights = primitive.attributes.find("WEIGHTS_0");
+    std::vector<glm::uvec4> j(count, glm::uvec4(0));
+    std::vector<glm::vec4> w(count, glm::vec4(0.0f));
+    if (joints != primitive.attributes.end() && weights != primitive.attributes.end()) {
+      j = readJoints(ctx_, joints->second, where);
+      const FloatElements read = readFloats(ctx_, weights->second, where, "WEIGHTS_0", true);
+      if (read.components != 4 || j.size() != count || read.values.size() != 4 * size_t(count)) {
+        fail(ctx_, where, "JOINTS_0 and WEIGHTS_0 need one VEC4 per vertex (" + std::to_string(count) +
+                              "); re-export the skin");
+      }
+      for (size_t v = 0; v < count; ++v) {
+        const glm::vec4 vw(read.values[4 * v], read.values[4 * v + 1], read.values[4 * v + 2], read.values[4 * v + 3]);
+        const float sum = vw.x + vw.y + vw.z + vw.w;
+        // Exporters quantize weights, so their sum drifts from 1; glTF asks for a sum of 1.
+        w[v] = sum > 0.0f ? vw / sum : glm::vec4(0.0f);
+      }
+    }
+    deformation_->joints.insert(deformation_->joints.end(), j.begin(), j.end());
+    deformation_->jointWeights.insert(deformation_->jointWeights.end(), w.begin(), w.end());
+  }
+
+  void appendDelta(const std::map<std::string, int>& target, const char* attribute, uint32_t count,
+                   const std::string& where, std::vector<glm::vec3>& out) {
+    const auto found = target.find(attribute);
+    std::vector<glm::vec3> delta(count, glm::vec3(0.0f));
+    if (found != target.end()) {
+      delta = readVec3Attribute(ctx_, found->second, where, attribute);
+      if (delta.size() != count) {
+        fail(ctx_, where,
+             std::string(attribute) + " has " + std::to_string(delta.size()) + " vertices but the primitive " +
+                 std::to_string(count) + "; re-export the morph target");
+      }
+    }
+    out.insert(out.end(), delta.begin(), delta.end());
+  }
+
   const Context& ctx_;
   const tinygltf::Mesh& gltfMesh_;
   const uint32_t defaultMaterial_;
+  MeshDeformation* deformation_;  // null: rigid
   std::string where_;
   Mesh mesh_;
   std::map<VertexSource, uint32_t> baseOf_;  // accessors -> their first vertex in mesh_
@@ -200,8 +255,9 @@ private:
 
 }  // namespace
 
-Mesh convertMesh(const Context& ctx, size_t index, uint32_t defaultMaterial) {
-  return MeshBuilder(ctx, index, defaultMaterial).build();
+Mesh convertMesh(const Context& ctx, size_t index, uint32_t defaultMaterial, MeshDeformation* deformation,
+                 size_t morphTargets) {
+  return MeshBuilder(ctx, index, defaultMaterial, deformation, morphTargets).build();
 }
 
 }  // namespace wp::gltf

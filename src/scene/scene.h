@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "scene/environment_map.h"
 
 namespace wp {
+
+struct SceneAnimation;
 
 // A glTF metallic-roughness material (defaults as in glTF), or an ideal diffuse one.
 struct Material {
@@ -127,6 +130,10 @@ struct Scene {
   EnvironmentMap sky;
   float skyIntensity = 1.0f;
   float skyRotation = 0.0f;
+  // Animations, skins and the node hierarchy, to pose the scene at other times with
+  // poseScene (scene/scene_animation.h); null when the file has no animation, skin or morph
+  // target.
+  std::shared_ptr<const SceneAnimation> animation;
 };
 
 }  // namespace wp

@@ -1,0 +1,47 @@
+// End to end: `wavepath render --frames` writes an image sequence in which moved objects move.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "image/image_io.h"
+#include "support/run_wavepath.h"
+
+namespace wp::test {
+namespace {
+
+// The pixel (column, row from the top) that sees world point (x, y, 0) from the camera of
+// tests/data/anim_trs.gltf: at (0, 0, 5) looking down -z, yfov 0.8, a square image.
+std::pair<uint32_t, uint32_t> pixelOf(float x, float y, uint32_t size) {
+  const float halfHeight = 5.0f * std::tan(0.4f);
+  const float u = (x / halfHeight + 1.0f) / 2.0f;
+  const float v = (1.0f - y / halfHeight) / 2.0f;
+  return {uint32_t(u * float(size)), uint32_t(v * float(size))};
+}
+
+TEST(AnimationSequence, FramesAreWrittenAndTheMovingTriangleMoves) {
+  const std::filesystem::path dir = scratchDirectory("sequence");
+  const std::filesystem::path scene = sourceDirectory() / "tests" / "data" / "anim_trs.gltf";
+  const uint32_t size = 32;
+  // Frames 0, 1, 2 at 2 fps: 0, 0.5 and 1 s.
+  const RunResult r = runWavepath({"render", scene.string(), "-o", (dir / "frame_##.exr").string(), "--frames",
+                                   "0..2", "--fps", "2", "--width", "32", "--height", "32", "--spp", "4"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+  for (const char* name : {"frame_00.exr", "frame_01.exr", "frame_02.exr"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+  }
+  // The triangle (0,0,0), (1,0,0), (0,1,0) of node "mover" moves by 2 in x over 1 s, so at
+  // 0.5 s it covers the point (1.33, 0.33, 0), where at 0 s nothing was but the white sky.
+  const RadianceImage before = readExr(dir / "frame_00.exr");
+  const RadianceImage after = readExr(dir / "frame_01.exr");
+  const auto [column, row] = pixelOf(4.0f / 3.0f, 1.0f / 3.0f, size);
+  const size_t pixel = size_t(row) * size + column;
+  // The sky is radiance 1 exactly (the camera ray escapes at once); the triangle is Lambertian
+  // with albedo 0.2 under that sky, so it reflects at most 0.2.
+  EXPECT_NEAR(before.mean[pixel].g, 1.0f, 1e-5f);
+  EXPECT_LT(after.mean[pixel].g, 0.25f);
+}
+
+}  // namespace
+}  // namespace wp::test
