@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +17,7 @@
 #include "app/progress_bar.h"
 #include "bvh/gpu_scene.h"
 #include "bvh/instance_baking.h"
+#include "bvh/scene_update.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "image/image_io.h"
@@ -46,9 +48,16 @@ double peakMemoryMiB() {
   return double(usage.ru_maxrss) / 1024.0;
 }
 
-void printTimings(const RenderStats& stats, const GpuScene& gpuScene) {
-  std::printf("BVH: %zu triangles, built in %.1f ms, SAH cost %.2f\n", gpuScene.triangleCount,
-              gpuScene.bvhBuildSeconds * 1e3, gpuScene.sahCost);
+void printTimings(const RenderStats& stats, const GpuScene& gpuScene, const SceneUpdateTimes* update) {
+  if (update) {
+    std::printf("scene update: %.1f ms (refit %.1f ms of %u meshes, %u rebuilt in %.1f ms, triangles %.1f ms, "
+                "top level %.1f ms, lights %.1f ms)\n",
+                update->totalMs(), update->refitMs, update->refits, update->rebuilds, update->rebuildMs,
+                update->trianglesMs, update->tlasMs, update->lightsMs);
+  } else {
+    std::printf("BVH: %zu triangles, built in %.1f ms, SAH cost %.2f\n", gpuScene.triangleCount,
+                gpuScene.bvhBuildSeconds * 1e3, gpuScene.sahCost);
+  }
   std::printf("GPU time per stage over %u passes (ms):", stats.passes);
   for (int k = 0; k < kKernelCount; ++k) {
     std::printf(" %s %.1f%s", kernelName(Kernel(k)), stats.kernelMs[k], k + 1 < kKernelCount ? "," : "\n");
@@ -56,9 +65,26 @@ void printTimings(const RenderStats& stats, const GpuScene& gpuScene) {
   std::printf("peak memory: %.0f MiB\n", peakMemoryMiB());
 }
 
-// The GPU form of one pose of the scene. (An incremental update that reuses the bottom-level
-// BVHs of the previous pose belongs here.)
-GpuScene gpuSceneOf(const Scene& posed) { return packScene(bakeSingleUseMeshes(posed)); }
+// The GPU form of each pose of a sequence: the first is packed whole, later ones reuse its
+// bottom-level BVHs (refitted where meshes deform) under a rebuilt top level.
+class PoseUploader {
+public:
+  const GpuScene& gpuSceneOf(const Scene& posed) {
+    Scene baked = bakeSingleUseMeshes(posed);
+    if (!updater_) {
+      updater_.emplace(baked);
+      return updater_->scene();
+    }
+    updated_ = true;
+    return updater_->update(baked);
+  }
+  // The parts of the last update; null while only the first pose was packed.
+  const SceneUpdateTimes* lastUpdate() const { return updated_ ? &updater_->times() : nullptr; }
+
+private:
+  std::optional<SceneUpdater> updater_;
+  bool updated_ = false;
+};
 
 // The frames to render (one, frame 0, when no sequence is asked for); the flags themselves
 // were checked when they were parsed.
@@ -84,10 +110,10 @@ CLI::Validator finiteNumber(bool positive) {
 }
 
 // Renders one pose of the scene on `backend` and writes it to `output`, with the summary line.
-void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, Scene scene,
-                 const std::string& output) {
+void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, PoseUploader& uploader,
+                 Scene scene, const std::string& output) {
   auto wallStart = std::chrono::steady_clock::now();
-  GpuScene gpuScene = gpuSceneOf(scene);
+  const GpuScene& gpuScene = uploader.gpuSceneOf(scene);
   applyCameraFlags(o.camera, scene.camera, gpuScene);
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
   ProgressBar bar;
@@ -105,7 +131,7 @@ void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& b
               double(stats.samples) / stats.seconds * 1e-6, rays / stats.seconds * 1e-6,
               double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend.deviceName().c_str());
   if (o.timings) {
-    printTimings(stats, gpuScene);
+    printTimings(stats, gpuScene, uploader.lastUpdate());
   }
 }
 
@@ -217,9 +243,10 @@ int runRender(RenderOptions o) {
   }
   BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);
+  PoseUploader uploader;
   for (uint32_t frame = frames.first;; ++frame) {
     const std::optional<double> time = o.frames.empty() ? o.time : std::optional<double>(frame / o.fps);
-    renderFrame(o, choice, *backend, time ? poseScene(scene, *time) : scene, framePath(o.output, frame));
+    renderFrame(o, choice, *backend, uploader, time ? poseScene(scene, *time) : scene, framePath(o.output, frame));
     if (frame == frames.last) break;  // tested here, as frames.last may be the largest uint32_t
   }
   return 0;
