@@ -524,6 +524,26 @@ TEST_F(SceneTest, ReadsVertexColorsOfEachEncoding) {
   EXPECT_EQ(colors[8], glm::vec4(1.0f));  // the primitive without COLOR_0: white
 }
 
+// emissiveTexture is an sRGB texture of the material, read without the warning about
+// textures wavepath ignores; an occlusion texture still gets it.
+TEST_F(SceneTest, ReadsEmissiveTexturesAndWarnsAboutOcclusion) {
+  GltfFile file = triangleFile();
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");
+  const std::string rest = R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],
+    "textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,)" + base64(twoTexelPng()) + R"("}],)";
+  std::string printed;
+  const Scene scene = load(file.json(rest + R"("materials":[{"emissiveFactor":[1,0.5,1],"emissiveTexture":{"index":0}}])"),
+                           &printed);
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.materials[0].emissiveTexture, 0);
+  EXPECT_TRUE(scene.textures[0].srgb);
+  EXPECT_EQ(printed.find("ignores"), std::string::npos) << printed;
+  load(file.json(rest + R"("materials":[{"occlusionTexture":{"index":0}}])"), &printed);
+  EXPECT_NE(printed.find("occlusion textures"), std::string::npos) << printed;
+}
+
 TEST_F(SceneTest, RejectsMissingAndUndecodableImages) {
   GltfFile file = triangleFile();
   file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");

@@ -90,12 +90,13 @@ uint loadTexelWord(uint i) { return texelFetch(texelTexels, int(i >> 2u))[i & 3u
 
 GpuMaterial loadMaterial(uint i) {
   GpuMaterial m;
-  m.baseColor = WP_FLOATS(materialTexels, i, 6u, 0u);
-  m.emission = WP_FLOATS(materialTexels, i, 6u, 1u);
-  m.surface = WP_FLOATS(materialTexels, i, 6u, 2u);
-  m.attenuation = WP_FLOATS(materialTexels, i, 6u, 3u);
-  m.info = WP_UINTS(materialTexels, i, 6u, 4u);
-  m.normalMap = WP_FLOATS(materialTexels, i, 6u, 5u);
+  m.baseColor = WP_FLOATS(materialTexels, i, 7u, 0u);
+  m.emission = WP_FLOATS(materialTexels, i, 7u, 1u);
+  m.surface = WP_FLOATS(materialTexels, i, 7u, 2u);
+  m.attenuation = WP_FLOATS(materialTexels, i, 7u, 3u);
+  m.info = WP_UINTS(materialTexels, i, 7u, 4u);
+  m.normalMap = WP_FLOATS(materialTexels, i, 7u, 5u);
+  m.emissiveMap = WP_UINTS(materialTexels, i, 7u, 6u);
   return m;
 }
 

@@ -2,6 +2,7 @@
 // its instances, a top-level BVH over the instances, and the power-proportional light table.
 #include "bvh/gpu_scene.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "bvh/bvh_builder.h"
+#include "bvh/light_emission.h"
 #include "core/log.h"
 #include "shaders/common/environment.h"
 #include "shaders/common/traverse.h"
@@ -145,13 +147,37 @@ Triangle triangleOf(const Mesh& mesh, size_t t) {
           mesh.positions[mesh.indices[3 * t + 2]]};
 }
 
+uint32_t textureIndex(int index) { return index < 0 ? WP_INVALID : uint32_t(index); }
+
+void packTextures(const Scene& scene, GpuScene& out) {
+  for (const Texture& texture : scene.textures) {
+    const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
+    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u);
+    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags)});
+    out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
+  }
+  // The Vulkan texel view reads four texels per RGBA32UI element.
+  out.texels.resize((out.texels.size() + 3) / 4 * 4, 0u);
+}
+
 double seconds(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// A textured emitter whose texture is black where the estimate looked keeps this fraction of
+// its factor's selection weight: the estimate may miss bright texels, and a light that can
+// never be sampled would be lost to next event estimation alone.
+constexpr float kMinimumTextureShare = 1e-3f;
+
+struct Emitter {
+  uint32_t triangle = 0;  // index in the mesh
+  uint32_t packed = 0;    // index in GpuScene::triangles (and triangleShading)
+  float weight = 0.0f;    // luminance of its mean emitted radiance (GpuLight::emission.w)
+};
+
 struct PackedMesh {
-  Aabb bounds;                     // object space
-  std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
+  Aabb bounds;                   // object space
+  std::vector<Emitter> emitters;  // its emissive non-degenerate triangles in the mesh's order
 };
 
 // Vertex normals, TEXCOORD_0 and COLOR_0 of triangle t (zero normals and uvs, white, where
@@ -194,7 +220,7 @@ PackedMesh packMesh(const Scene& scene, const Mesh& mesh, GpuScene& out, double&
     bool degenerate = !(glm::dot(normal, normal) > 0.0f) || !isFinite(normal);
     if (scene.materials[mesh.materials[t]].isEmissive() && !degenerate) {
       ordinal[t] = static_cast<uint32_t>(packed.emitters.size());
-      packed.emitters.push_back(static_cast<uint32_t>(t));
+      packed.emitters.push_back({static_cast<uint32_t>(t)});
     }
   }
 
@@ -215,9 +241,18 @@ PackedMesh packMesh(const Scene& scene, const Mesh& mesh, GpuScene& out, double&
   range.rootNode = appendNodes(bvh, range.firstTriangle, out.nodes);
   for (uint32_t t : bvh.primIndices) {
     Triangle v = triangleOf(mesh, t);
+    gpu::GpuTriangleShading shading = shadingOf(mesh, t);
+    if (ordinal[t] != WP_INVALID) {
+      const Material& material = scene.materials[mesh.materials[t]];
+      Emitter& emitter = packed.emitters[ordinal[t]];
+      emitter.packed = static_cast<uint32_t>(out.triangles.size());
+      glm::vec3 mean = meanEmission(out.textures, out.texels, shading, material.emission,
+                                    textureIndex(material.emissiveTexture));
+      emitter.weight = std::max(luminance(mean), kMinimumTextureShare * luminance(material.emission));
+    }
     out.triangles.push_back({glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
                              glm::uvec4(mesh.materials[t], ordinal[t], 0u, 0u)});
-    out.triangleShading.push_back(shadingOf(mesh, t));
+    out.triangleShading.push_back(shading);
   }
   return packed;
 }
@@ -247,19 +282,22 @@ struct InstanceCandidates {
   }
 };
 
-// Appends the world-space lights of one mesh instance and their selection weights.
+// Appends the world-space lights of one mesh instance and their selection weights: power,
+// from the triangle's mean emission (so black parts of an emissive texture get few samples).
 void appendLights(const Scene& scene, const Mesh& mesh, const PackedMesh& packed, const glm::mat4& toWorld,
                   std::vector<gpu::GpuLight>& lights, std::vector<double>& power) {
-  for (uint32_t t : packed.emitters) {
-    Triangle v = triangleOf(mesh, t);
+  for (const Emitter& emitter : packed.emitters) {
+    Triangle v = triangleOf(mesh, emitter.triangle);
     for (glm::vec3& p : v) {
       p = glm::vec3(toWorld * glm::vec4(p, 1.0f));
     }
-    const Material& material = scene.materials[mesh.materials[t]];
+    const Material& material = scene.materials[mesh.materials[emitter.triangle]];
     float area = 0.5f * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
     lights.push_back({glm::vec4(v[0], area), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
-                      glm::vec4(material.emission, 0.0f), glm::uvec4(0u, material.doubleSided ? 1u : 0u, 0u, 0u)});
-    power.push_back(static_cast<double>(luminance(material.emission)) * area * (material.doubleSided ? 2.0 : 1.0));
+                      glm::vec4(material.emission, emitter.weight),
+                      glm::uvec4(0u, material.doubleSided ? 1u : 0u, emitter.packed,
+                                 textureIndex(material.emissiveTexture))});
+    power.push_back(static_cast<double>(emitter.weight) * area * (material.doubleSided ? 2.0 : 1.0));
   }
 }
 
@@ -282,6 +320,7 @@ void packSky(const Scene& scene, double trianglePower, GpuScene& out) {
 
 GpuScene packScene(const Scene& scene) {
   GpuScene out;
+  packTextures(scene, out);  // first: the light table weighs emissive textures
   double weightedSah = 0.0;
   std::vector<PackedMesh> packed;
   for (const Mesh& mesh : scene.meshes) {
@@ -343,15 +382,6 @@ GpuScene packScene(const Scene& scene) {
   }
   packSky(scene, trianglePower, out);
 
-  for (const Texture& texture : scene.textures) {
-    const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
-    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u);
-    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags)});
-    out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
-  }
-  // The Vulkan texel view reads four texels per RGBA32UI element.
-  out.texels.resize((out.texels.size() + 3) / 4 * 4, 0u);
-  auto textureIndex = [](int index) { return index < 0 ? WP_INVALID : uint32_t(index); };
   for (const Material& material : scene.materials) {
     out.materials.push_back(
         {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),
@@ -360,7 +390,8 @@ GpuScene packScene(const Scene& scene) {
          glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF,
                     textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
                     textureIndex(material.normalTexture)),
-         glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f)});
+         glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f),
+         glm::uvec4(textureIndex(material.emissiveTexture), 0u, 0u, 0u)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

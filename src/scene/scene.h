@@ -32,6 +32,7 @@ struct Material {
   int metallicRoughnessTexture = -1;  // index into Scene::textures (linear; B metallic, G roughness)
   int normalTexture = -1;             // index into Scene::textures (linear, tangent space)
   float normalScale = 1.0f;
+  int emissiveTexture = -1;           // index into Scene::textures (sRGB), multiplies emission
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
