@@ -4,8 +4,8 @@
 // known 4x4 texture lands at the right place, with nearest and bilinear filtering, each
 // wrap mode and the sRGB decode, and that COLOR_0 multiplies it; as an emissive texture of
 // a black emitter it shows the same way. A normal texture tilts the shading normal as the
-// equivalent vertex normals do; an emissive texture on a lamp lights the same in every
-// sampling mode.
+// equivalent vertex normals do, in the file's TANGENT frame where there is one; an emissive
+// texture on a lamp lights the same in every sampling mode.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -157,14 +157,17 @@ TEST_P(TextureRender, QuadShowsTheTextureAsSampled) {
   EXPECT_EQ(wrong, 0);
 }
 
-// ---- Normal mapping and an emissive lamp ------------------------------------------------
+// ---- Normal mapping, tangents and an emissive lamp ---------------------------------------
 
-enum class Tilt { None, NormalTexture, VertexNormal };
+enum class Tilt { None, NormalTexture, VertexNormal, FileTangent, RotatedUv };
 
 // The quad above (uv = (x, z) + 0.5, so +u is +x and +v is +z), Lambertian, lit by a
 // one-sided area light off to the side at +x, out of view. NormalTexture tilts it with a
 // 1x1 normal texture, VertexNormal with the same normal as glTF NORMALs: tangent-space
 // (x, y, z) is world x T + y B + z N with T = +x, B = -z ("up" in the image), N = +y.
+// FileTangent adds NORMAL +y and TANGENT (0, 0, 1, 1), a frame turned by 90 degrees from the
+// uv gradient's: T = +z, B = cross(N, T) = +x. RotatedUv gives the uv gradient that frame
+// instead, uv = (z + 0.5, 0.5 - x) without TANGENT, so it must render as FileTangent does.
 // A texturedLamp's emission is multiplied by a 2x1 texture, white on its half nearer the
 // quad (x < 1.5) and black beyond.
 std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::filesystem::path& dir) {
@@ -173,7 +176,7 @@ std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::file
   const uint8_t lampTexels[] = {255, 255, 255, 0, 0, 0};
   stbi_write_png((dir / "lamp.png").string().c_str(), 2, 1, 3, lampTexels, 6);
   glm::vec3 local = glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f;
-  glm::vec3 world = glm::normalize(glm::vec3(local.x, local.z, -local.y));
+  glm::vec3 world = tilt == Tilt::VertexNormal ? glm::normalize(glm::vec3(local.x, local.z, -local.y)) : glm::vec3(0, 1, 0);
   std::vector<float> quad = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
                              1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
   std::vector<float> normals;
@@ -182,15 +185,21 @@ std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::file
   std::vector<float> lamp = {1, 1.5f, 0.5f, 2, 1.5f, 0.5f, 2, 1.5f, 2, 1, 1.5f, 2};
   std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
   std::vector<float> lampUvs = {0, 0, 1, 0, 1, 1, 0, 1};
-  std::vector<uint8_t> bytes(80 + 48 + 24 + 48 + 32);
+  std::vector<float> tangents = {0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1};
+  std::vector<float> rotatedUvs = {-0.5f, 1.5f, 1.5f, 1.5f, 1.5f, -0.5f, -0.5f, -0.5f};
+  std::vector<uint8_t> bytes(80 + 48 + 24 + 48 + 32 + 64 + 32);
   std::memcpy(bytes.data(), quad.data(), 80);
   std::memcpy(bytes.data() + 80, normals.data(), 48);
   std::memcpy(bytes.data() + 128, indices.data(), 24);
   std::memcpy(bytes.data() + 152, lamp.data(), 48);
   std::memcpy(bytes.data() + 200, lampUvs.data(), 32);
-  std::string attributes = R"("POSITION": 0, "TEXCOORD_0": 1)" +
-                           std::string(tilt == Tilt::VertexNormal ? R"(, "NORMAL": 2)" : "");
-  std::string normalTexture = tilt == Tilt::NormalTexture ? R"(, "normalTexture": {"index": 0})" : "";
+  std::memcpy(bytes.data() + 232, tangents.data(), 64);
+  std::memcpy(bytes.data() + 296, rotatedUvs.data(), 32);
+  std::string attributes = tilt == Tilt::RotatedUv ? R"("POSITION": 0, "TEXCOORD_0": 7)" : R"("POSITION": 0, "TEXCOORD_0": 1)";
+  if (tilt == Tilt::VertexNormal || tilt == Tilt::FileTangent || tilt == Tilt::RotatedUv) attributes += R"(, "NORMAL": 2)";
+  if (tilt == Tilt::FileTangent) attributes += R"(, "TANGENT": 6)";
+  bool mapped = tilt == Tilt::NormalTexture || tilt == Tilt::FileTangent || tilt == Tilt::RotatedUv;
+  std::string normalTexture = mapped ? R"(, "normalTexture": {"index": 0})" : "";
   std::string lampAttributes = texturedLamp ? R"("POSITION": 4, "TEXCOORD_0": 5)" : R"("POSITION": 4)";
   std::string lampTexture = texturedLamp ? R"(, "emissiveTexture": {"index": 1})" : "";
   std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
@@ -202,13 +211,17 @@ std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::file
                   {"buffer": 0, "byteOffset": 80, "byteLength": 48},
                   {"buffer": 0, "byteOffset": 128, "byteLength": 24},
                   {"buffer": 0, "byteOffset": 152, "byteLength": 48},
-                  {"buffer": 0, "byteOffset": 200, "byteLength": 32}],
+                  {"buffer": 0, "byteOffset": 200, "byteLength": 32},
+                  {"buffer": 0, "byteOffset": 232, "byteLength": 64},
+                  {"buffer": 0, "byteOffset": 296, "byteLength": 32}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
                 {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 4, "type": "VEC2"},
                 {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
                 {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"},
                 {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC3", "min": [1, 1.5, 0.5], "max": [2, 1.5, 2]},
-                {"bufferView": 4, "componentType": 5126, "count": 4, "type": "VEC2"}],
+                {"bufferView": 4, "componentType": 5126, "count": 4, "type": "VEC2"},
+                {"bufferView": 5, "componentType": 5126, "count": 4, "type": "VEC4"},
+                {"bufferView": 6, "componentType": 5126, "count": 4, "type": "VEC2"}],
   "meshes": [{"primitives": [{"attributes": {)" + attributes + R"(}, "indices": 3, "material": 0}]},
              {"primitives": [{"attributes": {)" + lampAttributes + R"(}, "indices": 3, "material": 1}]}],
   "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}, "extras": {"wavepath": {"bsdf": "lambert"}})" +
@@ -237,6 +250,18 @@ TEST_P(NormalMap, TiltsLikeTheEquivalentVertexNormal) {
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(meanZ(means[1], means[2], c), 4.0) << means[1].mean[c] << " vs " << means[2].mean[c];
     EXPECT_GT(meanZ(means[0], means[1], c), 10.0) << means[0].mean[c] << " vs " << means[1].mean[c];
+  }
+}
+
+// A TANGENT in the file sets the normal texture's frame: it renders as the uv layout that
+// gives the uv gradient that frame, and clearly unlike the uv gradient of its own layout
+// (what it would render as if TANGENT were ignored).
+TEST_P(NormalMap, FollowsTheFilesTangents) {
+  std::vector<ImageMean> means;
+  for (Tilt tilt : {Tilt::FileTangent, Tilt::RotatedUv, Tilt::NormalTexture}) means.push_back(renderLitQuad(GetParam(), tilt));
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LT(meanZ(means[0], means[1], c), 4.0) << means[0].mean[c] << " vs " << means[1].mean[c];
+    EXPECT_GT(meanZ(means[0], means[2], c), 10.0) << means[0].mean[c] << " vs " << means[2].mean[c];
   }
 }
 

@@ -96,11 +96,10 @@ WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit 
 }
 
 // The shading normal tilted by the material's normal texture (glTF: tangent-space, +X along
-// the triangle's dP/du, +Y "up" in the image, i.e. along -dP/dv, xy scaled by the texture's
-// scale). The frame is the triangle's own uv gradient, orthogonalized against the
-// interpolated normal; TANGENT attributes in the file are not read. Falls back to the
-// unmapped normal where there is no frame or the result would face away from the
-// geometric front.
+// the tangent, +Y "up" in the image, xy scaled by the texture's scale). The frame is the
+// file's TANGENT or else the triangle's own uv gradient (SurfaceHit), orthogonalized against
+// the interpolated normal. Falls back to the unmapped normal where there is no frame or the
+// result would face away from the geometric front.
 WP_FN vec3 normalMapped(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
   if (m.info.w == WP_INVALID || !s.hasUv) {
     return s.shadingNormal;

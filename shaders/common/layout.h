@@ -89,7 +89,7 @@ WP_STRUCT_END(GpuTriangle)
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
 // light samples, for the emissive texture), so the traversal's triangle records stay 64
-// bytes: 80 bytes.
+// bytes: 128 bytes.
 WP_STRUCT(GpuTriangleShading)
   vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0, w: u0;
   vec4 normal1;  // all three normals zero: shade with the geometric normal (flat); w: u1
@@ -97,6 +97,9 @@ WP_STRUCT(GpuTriangleShading)
   vec4 v;        // xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
   uvec4 colors;  // xyz: COLOR_0 at the three vertices as RGBA8 (linear, r in the low byte);
                  // white without COLOR_0
+  vec4 tangent0;  // xyz: object-space unit glTF TANGENT at vertex 0, w: bitangent sign (+-1);
+  vec4 tangent1;  // all zero without TANGENT (the frame then comes from the uv gradient)
+  vec4 tangent2;
 WP_STRUCT_END(GpuTriangleShading)
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.

@@ -71,11 +71,14 @@ GpuPlane loadPlane(uint i) {
 
 GpuTriangleShading loadTriangleShading(uint i) {
   GpuTriangleShading t;
-  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 5u, 0u);
-  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 5u, 1u);
-  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 5u, 2u);
-  t.v = WP_FLOATS(triangleShadingTexels, i, 5u, 3u);
-  t.colors = WP_UINTS(triangleShadingTexels, i, 5u, 4u);
+  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 8u, 0u);
+  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 8u, 1u);
+  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 8u, 2u);
+  t.v = WP_FLOATS(triangleShadingTexels, i, 8u, 3u);
+  t.colors = WP_UINTS(triangleShadingTexels, i, 8u, 4u);
+  t.tangent0 = WP_FLOATS(triangleShadingTexels, i, 8u, 5u);
+  t.tangent1 = WP_FLOATS(triangleShadingTexels, i, 8u, 6u);
+  t.tangent2 = WP_FLOATS(triangleShadingTexels, i, 8u, 7u);
   return t;
 }
 

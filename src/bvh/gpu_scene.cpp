@@ -180,8 +180,8 @@ struct PackedMesh {
   std::vector<Emitter> emitters;  // its emissive non-degenerate triangles in the mesh's order
 };
 
-// Vertex normals, TEXCOORD_0 and COLOR_0 of triangle t (zero normals and uvs, white, where
-// the mesh has none).
+// Vertex normals, TEXCOORD_0, COLOR_0 and TANGENT of triangle t (zero normals, uvs and
+// tangents, white, where the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
   gpu::GpuTriangleShading shading{};
   const uint32_t* corner = &mesh.indices[3 * t];
@@ -198,6 +198,11 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
     const glm::vec4 c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[corner[k]];
     const glm::uvec4 bytes = glm::uvec4(glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f));
     shading.colors[k] = bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
+  }
+  if (!mesh.tangents.empty()) {
+    shading.tangent0 = mesh.tangents[corner[0]];
+    shading.tangent1 = mesh.tangents[corner[1]];
+    shading.tangent2 = mesh.tangents[corner[2]];
   }
   return shading;
 }

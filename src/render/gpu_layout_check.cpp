@@ -7,7 +7,7 @@ namespace wp::gpu {
 
 static_assert(sizeof(BvhNode) == 64);
 static_assert(sizeof(GpuTriangle) == 64);
-static_assert(sizeof(GpuTriangleShading) == 80);
+static_assert(sizeof(GpuTriangleShading) == 128);
 static_assert(sizeof(GpuTexture) == 16);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(sizeof(GpuPlane) == 32);
