@@ -168,7 +168,9 @@ TEST_P(LightTriangle, SamplesFollowTheRayCastPdf) {
   double worstPdfError = 0, worstDistanceError = 0, worstLightPdfError = 0;
   int misses = 0, wrongRadiance = 0;
   for (int i = 0; i < kSamples; ++i) {
-    gpu::LightSample s = gpu::sampleLightTriangle(nullptr, nullptr, nullptr, light, glm::vec3(c.position), next2(random));
+    // No emissive texture, so no shading records or textures to pass.
+    gpu::LightSample s =
+        gpu::sampleLightTriangle(nullptr, nullptr, nullptr, light, glm::vec3(c.position), next2(random));
     glm::dvec3 d = glm::normalize(glm::dvec3(s.direction));
     double reference = trianglePdf(c, c.position, d, 1e-4);
     if (reference == 0.0 || !(s.pdf > 0.0f)) {
@@ -309,7 +311,8 @@ TEST(SampleLight, MultipliesSelectionAndTriangleDensities) {
   glm::vec3 position(0.1f, 0.0f, 0.2f);
   for (int i = 0; i < 1000; ++i) {
     glm::vec3 u(random.next(), random.next(), random.next());
-    gpu::LightSample s = gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_POWER, position, u);
+    gpu::LightSample s =
+        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_POWER, position, u);
     const gpu::GpuLight& chosen = lights[gpu::selectLight(lights.data(), 3, u.x)];
     gpu::LightSample alone = gpu::sampleLightTriangle(nullptr, nullptr, nullptr, chosen, position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
@@ -361,8 +364,10 @@ TEST(SampleLight, SolidAngleSelectionFollowsTheWeights) {
     float probability = gpu::lightSelectionProbability(lights.data(), 3, WP_LIGHT_SELECTION_SOLID_ANGLE,
                                                        lights[choice.index], position);
     ASSERT_FLOAT_EQ(choice.probability, probability);
-    gpu::LightSample s = gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, u);
-    gpu::LightSample alone = gpu::sampleLightTriangle(nullptr, nullptr, nullptr, lights[choice.index], position, glm::vec2(u.y, u.z));
+    gpu::LightSample s =
+        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, u);
+    gpu::LightSample alone =
+        gpu::sampleLightTriangle(nullptr, nullptr, nullptr, lights[choice.index], position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
     ASSERT_FLOAT_EQ(s.pdf, alone.pdf * probability);
   }

@@ -529,8 +529,8 @@ TEST_F(SceneTest, ReadsVertexColorsOfEachEncoding) {
 TEST_F(SceneTest, ReadsTangentsWithNormalsAndZeroFillsTheRest) {
   GltfFile file = triangleFile();                                    // accessor 0
   file.positions({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});                 // accessor 1: NORMAL
-  const int tangents = file.accessor(file.view(bytesOf(std::vector<glm::vec4>{{2, 0, 0, 1}, {0, 0.5f, 0, -0.5f}, {0.6f, 0.8f, 0, 3}})),
-                                     0, kFloat, 3, "VEC4");          // accessor 2
+  const std::vector<glm::vec4> stored = {{2, 0, 0, 1}, {0, 0.5f, 0, -0.5f}, {0.6f, 0.8f, 0, 3}};
+  const int tangents = file.accessor(file.view(bytesOf(stored)), 0, kFloat, 3, "VEC4");  // accessor 2
   file.positions({{0, 0, 2}, {1, 0, 2}, {0, 1, 2}});                 // accessor 3: another triangle
   file.positions({{0, 0, 3}, {1, 0, 3}, {0, 1, 3}});                 // accessor 4: and another
   const Scene scene = load(file.json(R"(
@@ -560,8 +560,8 @@ TEST_F(SceneTest, ReadsEmissiveTexturesAndWarnsAboutOcclusion) {
     "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],
     "textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,)" + base64(twoTexelPng()) + R"("}],)";
   std::string printed;
-  const Scene scene = load(file.json(rest + R"("materials":[{"emissiveFactor":[1,0.5,1],"emissiveTexture":{"index":0}}])"),
-                           &printed);
+  const std::string emissive = R"("materials":[{"emissiveFactor":[1,0.5,1],"emissiveTexture":{"index":0}}])";
+  const Scene scene = load(file.json(rest + emissive), &printed);
   ASSERT_EQ(scene.textures.size(), 1u);
   EXPECT_EQ(scene.materials[0].emissiveTexture, 0);
   EXPECT_TRUE(scene.textures[0].srgb);

@@ -176,7 +176,8 @@ std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::file
   const uint8_t lampTexels[] = {255, 255, 255, 0, 0, 0};
   stbi_write_png((dir / "lamp.png").string().c_str(), 2, 1, 3, lampTexels, 6);
   glm::vec3 local = glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f;
-  glm::vec3 world = tilt == Tilt::VertexNormal ? glm::normalize(glm::vec3(local.x, local.z, -local.y)) : glm::vec3(0, 1, 0);
+  glm::vec3 tilted = glm::normalize(glm::vec3(local.x, local.z, -local.y));
+  glm::vec3 world = tilt == Tilt::VertexNormal ? tilted : glm::vec3(0, 1, 0);
   std::vector<float> quad = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
                              1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
   std::vector<float> normals;
@@ -195,8 +196,8 @@ std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::file
   std::memcpy(bytes.data() + 200, lampUvs.data(), 32);
   std::memcpy(bytes.data() + 232, tangents.data(), 64);
   std::memcpy(bytes.data() + 296, rotatedUvs.data(), 32);
-  std::string attributes = tilt == Tilt::RotatedUv ? R"("POSITION": 0, "TEXCOORD_0": 7)" : R"("POSITION": 0, "TEXCOORD_0": 1)";
-  if (tilt == Tilt::VertexNormal || tilt == Tilt::FileTangent || tilt == Tilt::RotatedUv) attributes += R"(, "NORMAL": 2)";
+  std::string attributes = R"("POSITION": 0, "TEXCOORD_0": )" + std::string(tilt == Tilt::RotatedUv ? "7" : "1");
+  if (tilt != Tilt::None && tilt != Tilt::NormalTexture) attributes += R"(, "NORMAL": 2)";
   if (tilt == Tilt::FileTangent) attributes += R"(, "TANGENT": 6)";
   bool mapped = tilt == Tilt::NormalTexture || tilt == Tilt::FileTangent || tilt == Tilt::RotatedUv;
   std::string normalTexture = mapped ? R"(, "normalTexture": {"index": 0})" : "";
@@ -246,7 +247,9 @@ class NormalMap : public ::testing::TestWithParam<std::string> {};
 // differs clearly from the untilted quad's.
 TEST_P(NormalMap, TiltsLikeTheEquivalentVertexNormal) {
   std::vector<ImageMean> means;
-  for (Tilt tilt : {Tilt::None, Tilt::NormalTexture, Tilt::VertexNormal}) means.push_back(renderLitQuad(GetParam(), tilt));
+  for (Tilt tilt : {Tilt::None, Tilt::NormalTexture, Tilt::VertexNormal}) {
+    means.push_back(renderLitQuad(GetParam(), tilt));
+  }
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(meanZ(means[1], means[2], c), 4.0) << means[1].mean[c] << " vs " << means[2].mean[c];
     EXPECT_GT(meanZ(means[0], means[1], c), 10.0) << means[0].mean[c] << " vs " << means[1].mean[c];
@@ -258,7 +261,9 @@ TEST_P(NormalMap, TiltsLikeTheEquivalentVertexNormal) {
 // (what it would render as if TANGENT were ignored).
 TEST_P(NormalMap, FollowsTheFilesTangents) {
   std::vector<ImageMean> means;
-  for (Tilt tilt : {Tilt::FileTangent, Tilt::RotatedUv, Tilt::NormalTexture}) means.push_back(renderLitQuad(GetParam(), tilt));
+  for (Tilt tilt : {Tilt::FileTangent, Tilt::RotatedUv, Tilt::NormalTexture}) {
+    means.push_back(renderLitQuad(GetParam(), tilt));
+  }
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(meanZ(means[0], means[1], c), 4.0) << means[0].mean[c] << " vs " << means[1].mean[c];
     EXPECT_GT(meanZ(means[0], means[2], c), 10.0) << means[0].mean[c] << " vs " << means[2].mean[c];

@@ -211,7 +211,8 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       ls.pdf *= skyChoice;
     } else {
       float u = min((u0 - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position, make_vec3(u, u1, u2));
+      ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position,
+                       make_vec3(u, u1, u2));
       ls.pdf *= 1.0f - skyChoice;
     }
     BsdfEval e = noEval();

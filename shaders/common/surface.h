@@ -83,8 +83,8 @@ WP_FN vec2 barycentricsAt(GpuTriangle tri, vec3 p) {
 // TEXCOORD_0 at barycentrics b (of vertices 1 and 2) of a triangle; hasUv(shading) says
 // whether the mesh has it.
 WP_FN vec2 uvAt(GpuTriangleShading shading, vec2 b) {
-  return make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) + make_vec2(shading.normal1.w, shading.v.y) * b.x +
-         make_vec2(shading.normal2.w, shading.v.z) * b.y;
+  return make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
+         make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
 }
 
 WP_FN bool hasUv(GpuTriangleShading shading) { return shading.v.w != 0.0f; }

@@ -51,8 +51,8 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
       baked.tangents.resize(base, glm::vec4(0.0f));
       for (const glm::vec4& t : mesh.tangents) {
         glm::vec3 m = glm::mat3(inst.objectToWorld) * glm::vec3(t);
-        baked.tangents.push_back(glm::vec3(t) == glm::vec3(0.0f) ? t
-                                                                 : glm::vec4(glm::normalize(m), det < 0.0f ? -t.w : t.w));
+        bool zero = glm::vec3(t) == glm::vec3(0.0f);
+        baked.tangents.push_back(zero ? t : glm::vec4(glm::normalize(m), det < 0.0f ? -t.w : t.w));
       }
     } else if (!baked.tangents.empty()) {
       baked.tangents.resize(baked.positions.size(), glm::vec4(0.0f));

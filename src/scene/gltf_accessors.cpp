@@ -103,8 +103,9 @@ std::vector<T> readFloatVectors(const Context& ctx, int index, const std::string
   const tinygltf::Accessor& accessor = lookUp(ctx, index, where, attribute);
   if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || accessor.type != type) {
     fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
-         std::string(attribute) + " must be FLOAT " + typeName(type) + ", not " + componentName(accessor.componentType) +
-             " " + typeName(accessor.type) + "; re-export the scene without mesh quantization");
+         std::string(attribute) + " must be FLOAT " + typeName(type) + ", not " +
+             componentName(accessor.componentType) + " " + typeName(accessor.type) +
+             "; re-export the scene without mesh quantization");
   }
   const ElementRange range = locate(ctx, index, where, sizeof(T));
   std::vector<T> values(range.count);
