@@ -635,6 +635,8 @@ TEST(PackScene, LightTableIsPowerProportionalWithAnExactAliasTable) {
     ASSERT_TRUE(std::isfinite(l.v0.w) && l.v0.w > 0.0f);
     EXPECT_NEAR(l.v0.w, 0.5f * glm::length(glm::cross(glm::vec3(l.edge1), glm::vec3(l.edge2))), 1e-5f * l.v0.w);
     power[i] = luminance(glm::vec3(l.emission)) * l.v0.w * (l.info.y ? 2.0 : 1.0);
+    EXPECT_NEAR(l.emission.w, luminance(glm::vec3(l.emission)), 1e-6f * l.emission.w);  // untextured: the factor's
+    EXPECT_EQ(l.info.w, WP_INVALID);
     powerSum += power[i];
     pmfSum += l.edge1.w;
     ASSERT_GE(l.edge2.w, 0.0f);
@@ -673,6 +675,7 @@ TEST(PackScene, LightTableIsPowerProportionalWithAnExactAliasTable) {
       EXPECT_NEAR(glm::length(v0 - glm::vec3(l.v0)), 0.0f, 1e-4f);
       EXPECT_EQ(glm::vec3(l.emission), glm::vec3(g.materials[tri.info.x].emission));
       EXPECT_EQ(l.info.y, g.materials[tri.info.x].emission.w > 0.5f ? 1u : 0u);
+      EXPECT_EQ(l.info.z, t);  // its shading record
       ++checked;
     }
   }
@@ -688,6 +691,48 @@ TEST(PackScene, LightTableIsPowerProportionalWithAnExactAliasTable) {
   std::sort(ordinals.begin(), ordinals.end());
   for (size_t i = 0; i < ordinals.size(); ++i) {
     ASSERT_EQ(ordinals[i], i);
+  }
+}
+
+// An emissive texture weighs each triangle by its mean emission over its uv footprint: a
+// 2x1 nearest texture, white then black (sRGB), under two triangles over the white texel,
+// one straddling both (a quarter of its area over the black one) and one over the black
+// texel, which keeps a thousandth of its factor's weight so that light sampling can still
+// find it. Lights name their shading record and texture.
+TEST(PackScene, EmissiveTextureWeighsLightsByTheirMeanEmission) {
+  wp::Scene s;
+  s.materials.resize(1);
+  s.materials[0].emission = glm::vec3(2.0f);
+  s.materials[0].emissiveTexture = 0;
+  wp::Texture texture;
+  texture.width = 2;
+  texture.height = 1;
+  texture.rgba = {0xffffffffu, 0xff000000u};
+  texture.nearest = true;
+  texture.srgb = true;
+  s.textures = {texture};
+  wp::Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {0.5f, 0, 0}, {0.5f, 1, 0}, {0, 1, 0}, {1, 0, 0}, {0, 1, 0}, {0.5f, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  for (const glm::vec3& p : mesh.positions) mesh.uvs.push_back(glm::vec2(p));  // uv = (x, y)
+  mesh.indices = {0, 1, 2, 0, 2, 3, 0, 4, 5, 6, 7, 8};
+  mesh.materials = {0, 0, 0, 0};
+  s.meshes = {mesh};
+  s.instances = {{0, glm::mat4(1.0f)}};
+  wp::GpuScene g = wp::packScene(s);
+  ASSERT_EQ(g.lights.size(), 4u);
+  // The straddling triangle's estimate is exact: its sub-triangles (4 per edge) do not cross
+  // u = 0.5. Everything else is exact too, so 1e-5 covers float rounding.
+  const double expectedMean[] = {1.0, 1.0, 0.75, 1e-3};
+  double total = 0.0;
+  for (size_t i = 0; i < 4; ++i) total += expectedMean[i] * g.lights[i].v0.w;  // times the area
+  for (size_t i = 0; i < 4; ++i) {
+    const wp::gpu::GpuLight& l = g.lights[i];
+    double pmf = expectedMean[i] * l.v0.w / total;
+    EXPECT_NEAR(l.emission.w, 2.0 * expectedMean[i], 1e-5) << i;
+    EXPECT_NEAR(l.edge1.w, pmf, 1e-5 * pmf) << i;
+    EXPECT_EQ(glm::vec3(l.emission), glm::vec3(2.0f));
+    EXPECT_EQ(l.info.w, 0u);
+    EXPECT_EQ(glm::vec3(g.triangles.at(l.info.z).v0), glm::vec3(l.v0)) << i;
   }
 }
 
@@ -856,8 +901,17 @@ TEST(SceneUpdater, MatchesPackSceneOfThePose) {
         }
         EXPECT_TRUE(sameBytes(std::vector{a}, std::vector{b})) << "instance " << i << " at t=" << t;
       }
-      EXPECT_TRUE(sameBytes(got.lights, want.lights)) << "t=" << t;
+      // Lights agree bit for bit too, up to the index of their triangle record (info.z), which
+      // a refitted tree places elsewhere: that record must be the same triangle.
+      ASSERT_EQ(got.lights.size(), want.lights.size());
       EXPECT_GT(got.lights.size(), 0u);
+      for (size_t l = 0; l < got.lights.size(); ++l) {
+        wp::gpu::GpuLight a = got.lights[l], b = want.lights[l];
+        EXPECT_TRUE(sameBytes(std::vector{got.triangles[a.info.z]}, std::vector{want.triangles[b.info.z]}))
+            << "light " << l << " at t=" << t;
+        a.info.z = b.info.z = 0;
+        EXPECT_TRUE(sameBytes(std::vector{a}, std::vector{b})) << "light " << l << " at t=" << t;
+      }
       EXPECT_EQ(got.boundsMin, want.boundsMin);
       EXPECT_EQ(got.boundsMax, want.boundsMax);
       EXPECT_EQ(got.sky.transform, want.sky.transform);

@@ -7,6 +7,7 @@
 
 #include "bvh/gpu_scene.h"
 #include "bvh/instance_baking.h"
+#include "shaders/common/surface.h"
 #include "shaders/common/traverse.h"
 
 namespace wp {
@@ -65,6 +66,91 @@ TEST(InstanceBaking, TransformsVertexNormalsWithTheInverseTranspose) {
   EXPECT_NEAR(glm::length(normals[3] - expected), 0.0f, 1e-6f);
   EXPECT_NEAR(glm::length(normals[4] - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
   EXPECT_EQ(normals[5], glm::vec3(0.0f));
+}
+
+// Random triangles, each with a random unit vertex normal and tangent (not along its uv
+// gradient) at all three corners, bitangent signs +1 and -1 alternating, and uvs.
+Mesh randomTangentMesh(std::mt19937& rng, int triangles) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Mesh mesh = randomMesh(rng, triangles, 0);
+  for (int t = 0; t < triangles; ++t) {
+    glm::vec3 n = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
+    glm::vec3 tangent = glm::normalize(glm::cross(n, glm::vec3(u(rng), u(rng), u(rng))));
+    for (int k = 0; k < 3; ++k) {
+      mesh.normals.push_back(n);
+      mesh.tangents.push_back(glm::vec4(tangent, t % 2 ? -1.0f : 1.0f));
+      mesh.uvs.push_back(glm::vec2(u(rng), u(rng)));
+    }
+  }
+  return mesh;
+}
+
+// The normal-mapping frame at a hit, as normalMapped (integrator.h) orthogonalizes it.
+struct TangentFrame {
+  glm::vec3 normal, tangent, bitangent;
+};
+
+TangentFrame frameAt(const GpuScene& g, const gpu::Hit& hit, glm::vec3 position) {
+  gpu::SurfaceHit s = gpu::surfaceAt(g.triangles.data(), g.instances.data(), g.planes.data(),
+                                     g.triangleShading.data(), hit.instance, hit.primitive, position);
+  glm::vec3 n = s.shadingNormal;
+  glm::vec3 t = glm::normalize(s.tangent - n * glm::dot(n, s.tangent));
+  glm::vec3 b = s.bitangent - n * glm::dot(n, s.bitangent) - t * glm::dot(t, s.bitangent);
+  return {n, t, glm::normalize(b)};
+}
+
+// Baked tangents take the transform itself, and a mirroring transform flips their
+// bitangent sign: the shading frame at every hit is the one the instance's transform gives
+// the mesh's own frame (tangent M t, bitangent M (w cross(n, t)) as surfaceAt computes it
+// for instances), for a mirrored and a sheared, rotated placement. (Without the flip every
+// bitangent on the mirrored mesh comes out reversed.)
+TEST(InstanceBaking, TransformsTangentsAndFlipsTheSignWhenMirrored) {
+  std::mt19937 rng(7);
+  Scene scene;
+  scene.materials.resize(1);
+  scene.meshes = {randomTangentMesh(rng, 40), randomTangentMesh(rng, 40)};
+  glm::mat4 mirrored = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(2, 0, 0)), glm::vec3(-1.5f, 1, 0.5f));
+  glm::mat4 sheared = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-2, 0, 0)), 0.7f, glm::vec3(0, 1, 1)) *
+                      glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0.6f, 1, 0, 0), glm::vec4(0, 0, 2, 0), glm::vec4(0, 0, 0, 1));
+  scene.instances = {{0, mirrored}, {1, sheared}};
+  Scene bakedScene = bakeSingleUseMeshes(scene);
+  ASSERT_EQ(bakedScene.meshes.size(), 1u);
+  const std::vector<glm::vec4>& tangents = bakedScene.meshes[0].tangents;
+  ASSERT_EQ(tangents.size(), 240u);
+  for (size_t v = 0; v < 120; ++v) {
+    glm::vec4 t = scene.meshes[0].tangents[v];
+    glm::vec3 expected = glm::normalize(glm::mat3(mirrored) * glm::vec3(t));
+    EXPECT_NEAR(glm::length(glm::vec3(tangents[v]) - expected), 0.0f, 1e-5f) << v;
+    EXPECT_EQ(tangents[v].w, -t.w) << v;                               // mirrored: flipped
+    EXPECT_EQ(tangents[120 + v].w, scene.meshes[1].tangents[v].w) << v;  // det > 0: kept
+  }
+
+  GpuScene instanced = packScene(scene);
+  GpuScene baked = packScene(bakedScene);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int hits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    glm::vec3 origin(3.0f * u(rng), 3.0f, 1.5f * u(rng));
+    glm::vec3 direction = glm::normalize(glm::vec3(u(rng), -1.5f, u(rng)));
+    auto trace = [&](const GpuScene& g) {
+      return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot,
+                               0u, origin, direction, WP_FLT_MAX);
+    };
+    gpu::Hit a = trace(instanced);
+    gpu::Hit b = trace(baked);
+    ASSERT_EQ(a.instance == WP_INVALID, b.instance == WP_INVALID) << "ray " << i;
+    if (a.instance == WP_INVALID) {
+      continue;
+    }
+    ++hits;
+    TangentFrame fa = frameAt(instanced, a, origin + direction * a.t);
+    TangentFrame fb = frameAt(baked, b, origin + direction * b.t);
+    // Float rounding of the baked vertices and a recomputed hit point: 1e-3 in direction.
+    EXPECT_GT(glm::dot(fa.normal, fb.normal), 0.999f) << "ray " << i;
+    EXPECT_GT(glm::dot(fa.tangent, fb.tangent), 0.999f) << "ray " << i;
+    EXPECT_GT(glm::dot(fa.bitangent, fb.bitangent), 0.999f) << "ray " << i;
+  }
+  EXPECT_GT(hits, 500);
 }
 
 TEST(InstanceBaking, MergesSingleUseMeshesAndKeepsSharedOnesInstanced) {

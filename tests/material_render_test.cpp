@@ -91,21 +91,6 @@ std::filesystem::path writeScene(const MaterialCase& c) {
 
 class MaterialRender : public ::testing::TestWithParam<std::tuple<std::string, MaterialCase>> {};
 
-// Statistic as in render_test's Cornell box: z < 4 per channel and pair of estimators.
-void expectAgreement(const std::vector<ImageMean>& means, const std::vector<std::string>& names) {
-  for (size_t a = 0; a < means.size(); ++a) {
-    for (size_t b = a + 1; b < means.size(); ++b) {
-      for (int c = 0; c < 3; ++c) {
-        EXPECT_LT(meanZ(means[a], means[b], c), 4.0)
-            << names[a] << " vs " << names[b] << ", channel " << c << ": " << means[a].mean[c] << " vs "
-            << means[b].mean[c] << " (se " << differenceError(means[a], means[b], c) << ")";
-        // The comparison is only sharp if the noise is small against the signal.
-        EXPECT_LT(differenceError(means[a], means[b], c), 0.03 * means[0].mean[c]);
-      }
-    }
-  }
-}
-
 TEST_P(MaterialRender, MisNeeAndBsdfSamplingAgreeInMeanRadiance) {
   const auto& [backend, c] = GetParam();
   std::filesystem::path scene = writeScene(c);

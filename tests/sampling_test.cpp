@@ -89,8 +89,9 @@ gpu::GpuLight makeLight(const TriangleCase& c, float selectionProbability) {
   light.v0 = glm::vec4(glm::vec3(c.v0), float(0.5 * glm::length(glm::cross(e1, e2))));
   light.edge1 = glm::vec4(glm::vec3(e1), selectionProbability);
   light.edge2 = glm::vec4(glm::vec3(e2), 1.0f);
-  light.emission = glm::vec4(1.0f, 2.0f, 3.0f, 0.0f);
-  light.info = glm::uvec4(0u, c.doubleSided ? 1u : 0u, 0u, 0u);
+  // w: the selection weight by solid angle, the luminance of an untextured light.
+  light.emission = glm::vec4(1.0f, 2.0f, 3.0f, 0.2126f + 0.7152f * 2.0f + 0.0722f * 3.0f);
+  light.info = glm::uvec4(0u, c.doubleSided ? 1u : 0u, 0u, WP_INVALID);  // no emissive texture
   return light;
 }
 
@@ -167,7 +168,9 @@ TEST_P(LightTriangle, SamplesFollowTheRayCastPdf) {
   double worstPdfError = 0, worstDistanceError = 0, worstLightPdfError = 0;
   int misses = 0, wrongRadiance = 0;
   for (int i = 0; i < kSamples; ++i) {
-    gpu::LightSample s = gpu::sampleLightTriangle(light, glm::vec3(c.position), next2(random));
+    // No emissive texture, so no shading records or textures to pass.
+    gpu::LightSample s =
+        gpu::sampleLightTriangle(nullptr, nullptr, nullptr, light, glm::vec3(c.position), next2(random));
     glm::dvec3 d = glm::normalize(glm::dvec3(s.direction));
     double reference = trianglePdf(c, c.position, d, 1e-4);
     if (reference == 0.0 || !(s.pdf > 0.0f)) {
@@ -308,9 +311,10 @@ TEST(SampleLight, MultipliesSelectionAndTriangleDensities) {
   glm::vec3 position(0.1f, 0.0f, 0.2f);
   for (int i = 0; i < 1000; ++i) {
     glm::vec3 u(random.next(), random.next(), random.next());
-    gpu::LightSample s = gpu::sampleLight(lights.data(), 3, WP_LIGHT_SELECTION_POWER, position, u);
+    gpu::LightSample s =
+        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_POWER, position, u);
     const gpu::GpuLight& chosen = lights[gpu::selectLight(lights.data(), 3, u.x)];
-    gpu::LightSample alone = gpu::sampleLightTriangle(chosen, position, glm::vec2(u.y, u.z));
+    gpu::LightSample alone = gpu::sampleLightTriangle(nullptr, nullptr, nullptr, chosen, position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
     ASSERT_FLOAT_EQ(s.pdf, alone.pdf * chosen.edge1.w);
   }
@@ -360,8 +364,10 @@ TEST(SampleLight, SolidAngleSelectionFollowsTheWeights) {
     float probability = gpu::lightSelectionProbability(lights.data(), 3, WP_LIGHT_SELECTION_SOLID_ANGLE,
                                                        lights[choice.index], position);
     ASSERT_FLOAT_EQ(choice.probability, probability);
-    gpu::LightSample s = gpu::sampleLight(lights.data(), 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, u);
-    gpu::LightSample alone = gpu::sampleLightTriangle(lights[choice.index], position, glm::vec2(u.y, u.z));
+    gpu::LightSample s =
+        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, u);
+    gpu::LightSample alone =
+        gpu::sampleLightTriangle(nullptr, nullptr, nullptr, lights[choice.index], position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
     ASSERT_FLOAT_EQ(s.pdf, alone.pdf * probability);
   }

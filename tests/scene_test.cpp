@@ -524,6 +524,52 @@ TEST_F(SceneTest, ReadsVertexColorsOfEachEncoding) {
   EXPECT_EQ(colors[8], glm::vec4(1.0f));  // the primitive without COLOR_0: white
 }
 
+// TANGENT is read where a primitive has NORMAL too (glTF ignores it otherwise), made unit
+// with a sign of exactly +-1, and zero for the vertices of primitives without it.
+TEST_F(SceneTest, ReadsTangentsWithNormalsAndZeroFillsTheRest) {
+  GltfFile file = triangleFile();                                    // accessor 0
+  file.positions({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});                 // accessor 1: NORMAL
+  const std::vector<glm::vec4> stored = {{2, 0, 0, 1}, {0, 0.5f, 0, -0.5f}, {0.6f, 0.8f, 0, 3}};
+  const int tangents = file.accessor(file.view(bytesOf(stored)), 0, kFloat, 3, "VEC4");  // accessor 2
+  file.positions({{0, 0, 2}, {1, 0, 2}, {0, 1, 2}});                 // accessor 3: another triangle
+  file.positions({{0, 0, 3}, {1, 0, 3}, {0, 1, 3}});                 // accessor 4: and another
+  const Scene scene = load(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TANGENT":)" + std::to_string(tangents) + R"(}},
+                             {"attributes":{"POSITION":3,"NORMAL":1}},
+                             {"attributes":{"POSITION":4,"TANGENT":)" + std::to_string(tangents) + R"(}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  const std::vector<glm::vec4>& t = scene.meshes[0].tangents;
+  ASSERT_EQ(t.size(), 9u);
+  EXPECT_EQ(t[0], glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(t[1], glm::vec4(0, 1, 0, -1));
+  EXPECT_NEAR(glm::length(t[2] - glm::vec4(0.6f, 0.8f, 0, 1)), 0.0f, 1e-6f);
+  for (size_t i = 3; i < 9; ++i) EXPECT_EQ(t[i], glm::vec4(0.0f)) << i;  // no TANGENT, or no NORMAL
+  const std::string message = errorOfJson(file.json(R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TANGENT":1}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  EXPECT_NE(message.find("TANGENT must be FLOAT VEC4, not FLOAT VEC3"), std::string::npos) << message;
+}
+
+// emissiveTexture is an sRGB texture of the material, read without the warning about
+// textures wavepath ignores; an occlusion texture still gets it.
+TEST_F(SceneTest, ReadsEmissiveTexturesAndWarnsAboutOcclusion) {
+  GltfFile file = triangleFile();
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");
+  const std::string rest = R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],
+    "textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,)" + base64(twoTexelPng()) + R"("}],)";
+  std::string printed;
+  const std::string emissive = R"("materials":[{"emissiveFactor":[1,0.5,1],"emissiveTexture":{"index":0}}])";
+  const Scene scene = load(file.json(rest + emissive), &printed);
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.materials[0].emissiveTexture, 0);
+  EXPECT_TRUE(scene.textures[0].srgb);
+  EXPECT_EQ(printed.find("ignores"), std::string::npos) << printed;
+  load(file.json(rest + R"("materials":[{"occlusionTexture":{"index":0}}])"), &printed);
+  EXPECT_NE(printed.find("occlusion textures"), std::string::npos) << printed;
+}
+
 TEST_F(SceneTest, RejectsMissingAndUndecodableImages) {
   GltfFile file = triangleFile();
   file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");

@@ -2,8 +2,10 @@
 // under the constant white sky of an emitter-less scene has radiance equal to its albedo,
 // so every pixel shows the base colour texture as sampled there: the test checks that a
 // known 4x4 texture lands at the right place, with nearest and bilinear filtering, each
-// wrap mode and the sRGB decode, and that COLOR_0 multiplies it. A normal texture tilts the
-// shading normal as the equivalent vertex normals do.
+// wrap mode and the sRGB decode, and that COLOR_0 multiplies it; as an emissive texture of
+// a black emitter it shows the same way. A normal texture tilts the shading normal as the
+// equivalent vertex normals do, in the file's TANGENT frame where there is one; an emissive
+// texture on a lamp lights the same in every sampling mode.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,6 +35,7 @@ struct TextureCase {
   int wrap;       // glTF sampler wrapS = wrapT
   int magFilter;  // glTF NEAREST 9728 or LINEAR 9729
   bool vertexColor = false;  // COLOR_0 kVertexColor at every vertex (UNSIGNED_BYTE, normalized)
+  bool emissive = false;     // the texture is the emissiveTexture of a black emitter instead
 };
 
 // Exactly representable in 8 bits, so the expected product is exact too.
@@ -111,8 +114,10 @@ std::filesystem::path writeScene(const TextureCase& c, const std::filesystem::pa
                 {"bufferView": 2, "componentType": 5121, "normalized": true, "count": 4, "type": "VEC4"}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1)" +
                      std::string(c.vertexColor ? R"(, "COLOR_0": 3)" : "") + R"(}, "indices": 2, "material": 0}]}],
-  "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "doubleSided": true,
-                 "extras": {"wavepath": {"bsdf": "lambert"}}}],
+  "materials": [{)" + std::string(c.emissive ? R"("pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]},
+                 "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0})"
+                                            : R"("pbrMetallicRoughness": {"baseColorTexture": {"index": 0}})") +
+                     R"(, "doubleSided": true, "extras": {"wavepath": {"bsdf": "lambert"}}}],
   "textures": [{"source": 0, "sampler": 0}],
   "images": [{"uri": "checker.png"}],
   "samplers": [{"magFilter": )" + std::to_string(c.magFilter) +
@@ -152,19 +157,27 @@ TEST_P(TextureRender, QuadShowsTheTextureAsSampled) {
   EXPECT_EQ(wrong, 0);
 }
 
-// ---- Normal mapping ------------------------------------------------------------------
+// ---- Normal mapping, tangents and an emissive lamp ---------------------------------------
 
-enum class Tilt { None, NormalTexture, VertexNormal };
+enum class Tilt { None, NormalTexture, VertexNormal, FileTangent, RotatedUv };
 
 // The quad above (uv = (x, z) + 0.5, so +u is +x and +v is +z), Lambertian, lit by a
 // one-sided area light off to the side at +x, out of view. NormalTexture tilts it with a
 // 1x1 normal texture, VertexNormal with the same normal as glTF NORMALs: tangent-space
 // (x, y, z) is world x T + y B + z N with T = +x, B = -z ("up" in the image), N = +y.
-std::filesystem::path writeLitQuad(Tilt tilt, const std::filesystem::path& dir) {
+// FileTangent adds NORMAL +y and TANGENT (0, 0, 1, 1), a frame turned by 90 degrees from the
+// uv gradient's: T = +z, B = cross(N, T) = +x. RotatedUv gives the uv gradient that frame
+// instead, uv = (z + 0.5, 0.5 - x) without TANGENT, so it must render as FileTangent does.
+// A texturedLamp's emission is multiplied by a 2x1 texture, white on its half nearer the
+// quad (x < 1.5) and black beyond.
+std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::filesystem::path& dir) {
   const uint8_t texel[] = {230, 90, 220};
   stbi_write_png((dir / "normal.png").string().c_str(), 1, 1, 3, texel, 3);
+  const uint8_t lampTexels[] = {255, 255, 255, 0, 0, 0};
+  stbi_write_png((dir / "lamp.png").string().c_str(), 2, 1, 3, lampTexels, 6);
   glm::vec3 local = glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f;
-  glm::vec3 world = glm::normalize(glm::vec3(local.x, local.z, -local.y));
+  glm::vec3 tilted = glm::normalize(glm::vec3(local.x, local.z, -local.y));
+  glm::vec3 world = tilt == Tilt::VertexNormal ? tilted : glm::vec3(0, 1, 0);
   std::vector<float> quad = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
                              1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
   std::vector<float> normals;
@@ -172,14 +185,24 @@ std::filesystem::path writeLitQuad(Tilt tilt, const std::filesystem::path& dir) 
   // Wound to face down, and off to +z too, so that a wrong bitangent sign shows.
   std::vector<float> lamp = {1, 1.5f, 0.5f, 2, 1.5f, 0.5f, 2, 1.5f, 2, 1, 1.5f, 2};
   std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
-  std::vector<uint8_t> bytes(80 + 48 + 24 + 48);
+  std::vector<float> lampUvs = {0, 0, 1, 0, 1, 1, 0, 1};
+  std::vector<float> tangents = {0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1};
+  std::vector<float> rotatedUvs = {-0.5f, 1.5f, 1.5f, 1.5f, 1.5f, -0.5f, -0.5f, -0.5f};
+  std::vector<uint8_t> bytes(80 + 48 + 24 + 48 + 32 + 64 + 32);
   std::memcpy(bytes.data(), quad.data(), 80);
   std::memcpy(bytes.data() + 80, normals.data(), 48);
   std::memcpy(bytes.data() + 128, indices.data(), 24);
   std::memcpy(bytes.data() + 152, lamp.data(), 48);
-  std::string attributes = R"("POSITION": 0, "TEXCOORD_0": 1)" +
-                           std::string(tilt == Tilt::VertexNormal ? R"(, "NORMAL": 2)" : "");
-  std::string normalTexture = tilt == Tilt::NormalTexture ? R"(, "normalTexture": {"index": 0})" : "";
+  std::memcpy(bytes.data() + 200, lampUvs.data(), 32);
+  std::memcpy(bytes.data() + 232, tangents.data(), 64);
+  std::memcpy(bytes.data() + 296, rotatedUvs.data(), 32);
+  std::string attributes = R"("POSITION": 0, "TEXCOORD_0": )" + std::string(tilt == Tilt::RotatedUv ? "7" : "1");
+  if (tilt != Tilt::None && tilt != Tilt::NormalTexture) attributes += R"(, "NORMAL": 2)";
+  if (tilt == Tilt::FileTangent) attributes += R"(, "TANGENT": 6)";
+  bool mapped = tilt == Tilt::NormalTexture || tilt == Tilt::FileTangent || tilt == Tilt::RotatedUv;
+  std::string normalTexture = mapped ? R"(, "normalTexture": {"index": 0})" : "";
+  std::string lampAttributes = texturedLamp ? R"("POSITION": 4, "TEXCOORD_0": 5)" : R"("POSITION": 4)";
+  std::string lampTexture = texturedLamp ? R"(, "emissiveTexture": {"index": 1})" : "";
   std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
   "nodes": [{"mesh": 0}, {"mesh": 1}, {"camera": 0, "translation": [0, 2, 0], "rotation": [-0.70710678, 0, 0, 0.70710678]}],
   "cameras": [{"type": "perspective", "perspective": {"yfov": 0.927295218, "aspectRatio": 1, "znear": 0.01}}],
@@ -188,22 +211,34 @@ std::filesystem::path writeLitQuad(Tilt tilt, const std::filesystem::path& dir) 
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 80, "byteStride": 20},
                   {"buffer": 0, "byteOffset": 80, "byteLength": 48},
                   {"buffer": 0, "byteOffset": 128, "byteLength": 24},
-                  {"buffer": 0, "byteOffset": 152, "byteLength": 48}],
+                  {"buffer": 0, "byteOffset": 152, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 200, "byteLength": 32},
+                  {"buffer": 0, "byteOffset": 232, "byteLength": 64},
+                  {"buffer": 0, "byteOffset": 296, "byteLength": 32}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
                 {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 4, "type": "VEC2"},
                 {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
                 {"bufferView": 2, "componentType": 5125, "count": 6, "type": "SCALAR"},
-                {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC3", "min": [1, 1.5, 0.5], "max": [2, 1.5, 2]}],
+                {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC3", "min": [1, 1.5, 0.5], "max": [2, 1.5, 2]},
+                {"bufferView": 4, "componentType": 5126, "count": 4, "type": "VEC2"},
+                {"bufferView": 5, "componentType": 5126, "count": 4, "type": "VEC4"},
+                {"bufferView": 6, "componentType": 5126, "count": 4, "type": "VEC2"}],
   "meshes": [{"primitives": [{"attributes": {)" + attributes + R"(}, "indices": 3, "material": 0}]},
-             {"primitives": [{"attributes": {"POSITION": 4}, "indices": 3, "material": 1}]}],
+             {"primitives": [{"attributes": {)" + lampAttributes + R"(}, "indices": 3, "material": 1}]}],
   "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1]}, "extras": {"wavepath": {"bsdf": "lambert"}})" +
                      normalTexture + R"(},
                 {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [1, 1, 1],
-                 "extras": {"wavepath": {"bsdf": "lambert"}}}],
-  "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "normal.png"}],
+                 "extras": {"wavepath": {"bsdf": "lambert"}})" + lampTexture + R"(}],
+  "textures": [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 0}],
+  "images": [{"uri": "normal.png"}, {"uri": "lamp.png"}],
   "samplers": [{"magFilter": 9728}]})";
   std::ofstream(dir / "lit.gltf") << json;
   return dir / "lit.gltf";
+}
+
+ImageMean renderLitQuad(const std::string& backend, Tilt tilt) {
+  std::filesystem::path scene = writeLitQuad(tilt, false, scratchDirectory("normal-map-" + std::to_string(int(tilt))));
+  return imageMean(renderExr(backend, scene, {"--width", "32", "--height", "32", "--spp", "64"}));
 }
 
 class NormalMap : public ::testing::TestWithParam<std::string> {};
@@ -213,8 +248,7 @@ class NormalMap : public ::testing::TestWithParam<std::string> {};
 TEST_P(NormalMap, TiltsLikeTheEquivalentVertexNormal) {
   std::vector<ImageMean> means;
   for (Tilt tilt : {Tilt::None, Tilt::NormalTexture, Tilt::VertexNormal}) {
-    std::filesystem::path scene = writeLitQuad(tilt, scratchDirectory("normal-map-" + std::to_string(int(tilt))));
-    means.push_back(imageMean(renderExr(GetParam(), scene, {"--width", "32", "--height", "32", "--spp", "64"})));
+    means.push_back(renderLitQuad(GetParam(), tilt));
   }
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(meanZ(means[1], means[2], c), 4.0) << means[1].mean[c] << " vs " << means[2].mean[c];
@@ -222,12 +256,55 @@ TEST_P(NormalMap, TiltsLikeTheEquivalentVertexNormal) {
   }
 }
 
+// A TANGENT in the file sets the normal texture's frame: it renders as the uv layout that
+// gives the uv gradient that frame, and clearly unlike the uv gradient of its own layout
+// (what it would render as if TANGENT were ignored).
+TEST_P(NormalMap, FollowsTheFilesTangents) {
+  std::vector<ImageMean> means;
+  for (Tilt tilt : {Tilt::FileTangent, Tilt::RotatedUv, Tilt::NormalTexture}) {
+    means.push_back(renderLitQuad(GetParam(), tilt));
+  }
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LT(meanZ(means[0], means[1], c), 4.0) << means[0].mean[c] << " vs " << means[1].mean[c];
+    EXPECT_GT(meanZ(means[0], means[2], c), 10.0) << means[0].mean[c] << " vs " << means[2].mean[c];
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backend, NormalMap, ::testing::Values(std::string("vulkan"), std::string("opencl")),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+class EmissiveTexture : public ::testing::TestWithParam<std::string> {};
+
+// The quad lit by the half-black lamp renders the same mean with light sampling alone, BSDF
+// sampling alone and both: light samples see the texture where they land (without it they
+// would find twice the light BSDF samples find), and the MIS weights of lamp hits use the
+// light table that light sampling draws from. The lamp's untextured twin must light the
+// quad clearly more, or the comparison would not show the texture at all.
+TEST_P(EmissiveTexture, LightSamplesSeeTheTextureAsHitsDo) {
+  std::filesystem::path dir = scratchDirectory("emissive-lamp");
+  std::vector<std::string> base = {"--width", "32", "--height", "32", "--spp", "256"};
+  std::vector<ImageMean> means;
+  std::vector<std::string> names;
+  for (const char* mode : {"mis", "nee", "bsdf"}) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), {"--mode", mode});
+    means.push_back(imageMean(renderExr(GetParam(), writeLitQuad(Tilt::None, true, dir), args)));
+    names.push_back(mode);
+  }
+  expectAgreement(means, names);
+  ImageMean untextured = imageMean(renderExr(GetParam(), writeLitQuad(Tilt::None, false, dir), base));
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(meanZ(means[0], untextured, c), 10.0) << means[0].mean[c] << " vs " << untextured.mean[c];
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backend, EmissiveTexture, ::testing::Values(std::string("vulkan"), std::string("opencl")),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 const TextureCase kCases[] = {
     {"NearestRepeat", 10497, 9728}, {"NearestClamp", 33071, 9728}, {"NearestMirror", 33648, 9728},
     {"LinearRepeat", 10497, 9729},  {"LinearClamp", 33071, 9729}, {"NearestRepeatVertexColor", 10497, 9728, true},
+    {"NearestMirrorEmissive", 33648, 9728, false, true}, {"LinearRepeatEmissive", 10497, 9729, false, true},
 };
 
 std::string caseName(const ::testing::TestParamInfo<std::tuple<std::string, TextureCase>>& info) {

@@ -75,12 +75,15 @@ WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray)
 
 // The material at the hit with its vertex colour and textures applied (glTF: base colour
 // times COLOR_0 times the texture; metallic and roughness times the texture's blue and
-// green). Surfaces without TEXCOORD_0 (and spheres and planes) use the constant factors.
+// green; emission times the emissive texture). Surfaces without TEXCOORD_0 (and spheres and
+// planes) use the constant factors.
 WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
   if (!s.hasUv) {
     return m;
   }
+  vec3 emission = texturedEmission(WP_TEXTURE_BUFFER_ARGS xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
+  m.emission = make_vec4(emission.x, emission.y, emission.z, m.emission.w);
   if (m.info.y != WP_INVALID) {
     m.baseColor = m.baseColor * sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.y, s.uv);
   }
@@ -93,10 +96,10 @@ WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit 
 }
 
 // The shading normal tilted by the material's normal texture (glTF: tangent-space, +X along
-// the triangle's dP/du, +Y "up" in the image, i.e. along -dP/dv, xy scaled by the texture's
-// scale). The frame is the triangle's own uv gradient, orthogonalized against the
-// interpolated normal; TANGENT attributes in the file are not read. Falls back to the
-// unmapped normal where the result would face away from the geometric front.
+// the tangent, +Y "up" in the image, xy scaled by the texture's scale). The frame is the
+// file's TANGENT or else the triangle's own uv gradient (SurfaceHit), orthogonalized against
+// the interpolated normal. Falls back to the unmapped normal where there is no frame or the
+// result would face away from the geometric front.
 WP_FN vec3 normalMapped(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
   if (m.info.w == WP_INVALID || !s.hasUv) {
     return s.shadingNormal;
@@ -208,7 +211,8 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       ls.pdf *= skyChoice;
     } else {
       float u = min((u0 - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, s.position, make_vec3(u, u1, u2));
+      ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position,
+                       make_vec3(u, u1, u2));
       ls.pdf *= 1.0f - skyChoice;
     }
     BsdfEval e = noEval();

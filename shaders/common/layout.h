@@ -87,8 +87,9 @@ WP_STRUCT(GpuTriangle)
   uvec4 info;  // x: material index, y: emitter ordinal within its mesh or WP_INVALID
 WP_STRUCT_END(GpuTriangle)
 
-// Shading data of the GpuTriangle at the same index, read only when shading a hit, so the
-// traversal's triangle records stay 64 bytes: 80 bytes.
+// Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
+// light samples, for the emissive texture), so the traversal's triangle records stay 64
+// bytes: 128 bytes.
 WP_STRUCT(GpuTriangleShading)
   vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0, w: u0;
   vec4 normal1;  // all three normals zero: shade with the geometric normal (flat); w: u1
@@ -96,6 +97,9 @@ WP_STRUCT(GpuTriangleShading)
   vec4 v;        // xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
   uvec4 colors;  // xyz: COLOR_0 at the three vertices as RGBA8 (linear, r in the low byte);
                  // white without COLOR_0
+  vec4 tangent0;  // xyz: object-space unit glTF TANGENT at vertex 0, w: bitangent sign (+-1);
+  vec4 tangent1;  // all zero without TANGENT (the frame then comes from the uv gradient)
+  vec4 tangent2;
 WP_STRUCT_END(GpuTriangleShading)
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
@@ -129,7 +133,7 @@ WP_STRUCT_END(GpuPlane)
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
 
-// A surface material, 96 bytes.
+// A surface material, 112 bytes.
 WP_STRUCT(GpuMaterial)
   vec4 baseColor;    // rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
   vec4 emission;     // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
@@ -139,6 +143,8 @@ WP_STRUCT(GpuMaterial)
   uvec4 info;        // x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness
                      // texture, w: normal texture (WP_INVALID: none)
   vec4 normalMap;    // x: the normal texture's scale, yzw: unused
+  uvec4 emissiveMap;  // x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none),
+                      // yzw: unused
 WP_STRUCT_END(GpuMaterial)
 
 // Emissive triangle in world space, with its alias-table entry for power-proportional
@@ -148,9 +154,12 @@ WP_STRUCT(GpuLight)
   vec4 v0;        // xyz: vertex 0, w: area
   vec4 edge1;     // xyz: v1 - v0, w: probability of selecting this light
   vec4 edge2;     // xyz: v2 - v0, w: alias threshold in [0, 1]
-  vec4 emission;  // rgb: radiance, w: unused
+  vec4 emission;  // rgb: radiance (the material's factor), w: luminance of the mean emitted
+                  // radiance over the triangle (texture included), its selection weight
   uvec4 info;     // x: alias index, y: 1 if it emits on both sides (else the front only,
-                  // the side of cross(edge1, edge2)), z, w: unused
+                  // the side of cross(edge1, edge2)), z: its GpuTriangleShading (the
+                  // vertices in the same order as v0, edge1, edge2), w: emissive texture
+                  // (WP_INVALID: none)
 WP_STRUCT_END(GpuLight)
 
 // Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.

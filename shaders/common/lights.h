@@ -5,15 +5,23 @@
 
 #include "layout.h"
 #include "sampling.h"
+#include "surface.h"
+#include "texture.h"
 
 WP_BEGIN
 
+// The light buffer, and what a light sample reads to evaluate an emissive texture: the
+// triangles' texture coordinates and the textures.
 #ifdef WP_BUFFERS_AS_ARGUMENTS
 #define WP_LIGHT_BUFFER WP_GLOBAL_PTR(GpuLight) lights,
 #define WP_LIGHT_BUFFER_ARG lights,
+#define WP_LIGHT_TEXTURE_BUFFERS WP_GLOBAL_PTR(GpuTriangleShading) triangleShading, WP_TEXTURE_BUFFERS
+#define WP_LIGHT_TEXTURE_BUFFER_ARGS triangleShading, WP_TEXTURE_BUFFER_ARGS
 #else
 #define WP_LIGHT_BUFFER
 #define WP_LIGHT_BUFFER_ARG
+#define WP_LIGHT_TEXTURE_BUFFERS
+#define WP_LIGHT_TEXTURE_BUFFER_ARGS
 #endif
 
 WP_STRUCT(LightSample)
@@ -44,8 +52,9 @@ WP_FN float lightPdf(GpuLight light, float selection, float distanceSquared, flo
   return areaToSolidAnglePdf(selection / light.v0.w, distanceSquared, cosAtLight);
 }
 
-// A point uniform on the area of `light`, seen from `position` (selection not included).
-WP_FN LightSample sampleLightTriangle(GpuLight light, vec3 position, vec2 u) {
+// A point uniform on the area of `light`, seen from `position` (selection not included),
+// with the emission there: the emissive texture at the point's interpolated TEXCOORD_0.
+WP_FN LightSample sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFERS GpuLight light, vec3 position, vec2 u) {
   vec2 b = sampleUniformTriangle(u);
   vec3 e1 = make_vec3(light.edge1.x, light.edge1.y, light.edge1.z);
   vec3 e2 = make_vec3(light.edge2.x, light.edge2.y, light.edge2.z);
@@ -59,6 +68,10 @@ WP_FN LightSample sampleLightTriangle(GpuLight light, vec3 position, vec2 u) {
   float cosAtLight = dot(n, s.direction) / length(n);
   s.pdf = s.distance > 0.0f ? areaToSolidAnglePdf(1.0f / light.v0.w, distanceSquared, cosAtLight) : 0.0f;
   vec3 emission = make_vec3(light.emission.x, light.emission.y, light.emission.z);
+  if (light.info.w != WP_INVALID) {
+    GpuTriangleShading shading = WP_TRIANGLE_SHADING(light.info.z);
+    emission = texturedEmission(WP_TEXTURE_BUFFER_ARGS emission, light.info.w, hasUv(shading), uvAt(shading, b));
+  }
   s.radiance = emittedRadiance(emission, light.info.y != 0u, n, -s.direction);
   return s;
 }
@@ -68,7 +81,7 @@ WP_FN LightSample sampleLightTriangle(GpuLight light, vec3 position, vec2 u) {
 // proportional to the solid angle it subtends from the shading point times its luminance,
 // so near lights get the samples that far bright ones would take. It costs a pass over all
 // lights per light sample (and per light hit, for the MIS weight), so it suits scenes with
-// few emissive triangles; off by default.
+// few emissive triangles; off by default. A textured light counts with its mean emission.
 
 // Solid angle of triangle (a, b, c), as vectors from the viewpoint (Van Oosterom & Strackee
 // 1983): tan(omega / 2) = |a.(b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|). A
@@ -94,8 +107,7 @@ WP_FN float solidAngleWeight(GpuLight light, vec3 position) {
   if (light.info.y == 0u && dot(cross(e1, e2), a) >= 0.0f) {
     return 0.0f;
   }
-  vec3 emission = make_vec3(light.emission.x, light.emission.y, light.emission.z);
-  return triangleSolidAngle(a, a + e1, a + e2) * luminance(emission);
+  return triangleSolidAngle(a, a + e1, a + e2) * light.emission.w;
 }
 
 WP_FN float solidAngleWeightSum(WP_LIGHT_BUFFER uint lightCount, vec3 position) {
@@ -144,7 +156,8 @@ WP_FN LightChoice selectLightBySolidAngle(WP_LIGHT_BUFFER uint lightCount, vec3 
 
 // Chooses a light (by power through the alias table, or by solid angle) and a point on it:
 // u.x selects, (u.y, u.z) place the point.
-WP_FN LightSample sampleLight(WP_LIGHT_BUFFER uint lightCount, uint selection, vec3 position, vec3 u) {
+WP_FN LightSample sampleLight(WP_LIGHT_BUFFER WP_LIGHT_TEXTURE_BUFFERS uint lightCount, uint selection, vec3 position,
+                              vec3 u) {
   LightChoice choice;
   if (selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {
     choice = selectLightBySolidAngle(WP_LIGHT_BUFFER_ARG lightCount, position, u.x);
@@ -160,7 +173,7 @@ WP_FN LightSample sampleLight(WP_LIGHT_BUFFER uint lightCount, uint selection, v
     s.pdf = 0.0f;
     return s;
   }
-  s = sampleLightTriangle(WP_LIGHT(choice.index), position, make_vec2(u.y, u.z));
+  s = sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFER_ARGS WP_LIGHT(choice.index), position, make_vec2(u.y, u.z));
   s.pdf *= choice.probability;
   return s;
 }

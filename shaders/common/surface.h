@@ -22,8 +22,10 @@ WP_STRUCT(SurfaceHit)
   vec2 uv;             // TEXCOORD_0 at the hit, if hasUv
   bool hasUv;
   vec4 color;          // COLOR_0 at the hit (white without)
-  vec3 tangent;        // unit world-space dP/du of the triangle (normal mapping), if hasUv
-  vec3 bitangent;      // unit world-space -dP/dv: tangent-space +Y is "up" in the image
+  vec3 tangent;        // unit world-space tangent-space +X (normal mapping): glTF TANGENT,
+                       // or else the triangle's dP/du; zero when there is neither
+  vec3 bitangent;      // unit world-space +Y, "up" in the image: the TANGENT's bitangent,
+                       // or else -dP/dv; zero with the tangent
   uint material;
   uint light;     // index into the light buffer, WP_INVALID if not a sampled light
 WP_STRUCT_END(SurfaceHit)
@@ -78,6 +80,15 @@ WP_FN vec2 barycentricsAt(GpuTriangle tri, vec3 p) {
   return make_vec2((d11 * d20 - d01 * d21) / denominator, (d00 * d21 - d01 * d20) / denominator);
 }
 
+// TEXCOORD_0 at barycentrics b (of vertices 1 and 2) of a triangle; hasUv(shading) says
+// whether the mesh has it.
+WP_FN vec2 uvAt(GpuTriangleShading shading, vec2 b) {
+  return make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
+         make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
+}
+
+WP_FN bool hasUv(GpuTriangleShading shading) { return shading.v.w != 0.0f; }
+
 // `instanceField` and `primitive` are HitRecord.hit.y and .z of a hit (not a miss).
 WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive, vec3 position) {
   SurfaceHit s;
@@ -113,24 +124,30 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   vec3 n2 = make_vec3(shading.normal2.x, shading.normal2.y, shading.normal2.z);
   vec2 b = barycentricsAt(tri, pointToObject(inst, position));
   vec3 n = n0 * (1.0f - b.x - b.y) + n1 * b.x + n2 * b.y;
-  s.hasUv = shading.v.w != 0.0f;
-  s.uv = make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
-         make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
+  s.hasUv = hasUv(shading);
+  s.uv = uvAt(shading, b);
   s.color = unpackUnorm8(shading.colors.x) * (1.0f - b.x - b.y) + unpackUnorm8(shading.colors.y) * b.x +
             unpackUnorm8(shading.colors.z) * b.y;
-  // The triangle's uv gradient: [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2].
+  // The file's TANGENT (glTF: bitangent = w cross(normal, tangent), in object space, so a
+  // mirroring instance transform mirrors it along with the rest), else the triangle's uv
+  // gradient: [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2].
+  vec4 t = shading.tangent0 * (1.0f - b.x - b.y) + shading.tangent1 * b.x + shading.tangent2 * b.y;
+  vec3 tangent = make_vec3(t.x, t.y, t.z);
+  vec3 bitangent = cross(n, tangent) * (t.w < 0.0f ? -1.0f : 1.0f);
   float du1 = shading.normal1.w - shading.normal0.w;
   float du2 = shading.normal2.w - shading.normal0.w;
   float dv1 = shading.v.y - shading.v.x;
   float dv2 = shading.v.z - shading.v.x;
   float determinant = du1 * dv2 - du2 * dv1;
-  if (s.hasUv && determinant != 0.0f) {
-    vec3 dpdu = (e1 * dv2 - e2 * dv1) / determinant;
-    vec3 dpdv = (e2 * du1 - e1 * du2) / determinant;
-    s.tangent = objectToWorldDirection(inst, dpdu);
-    s.bitangent = -objectToWorldDirection(inst, dpdv);
+  if (dot(tangent, tangent) > 1e-12f && dot(bitangent, bitangent) > 1e-12f) {
+    s.tangent = objectToWorldDirection(inst, tangent);
+    s.bitangent = objectToWorldDirection(inst, bitangent);
+  } else if (s.hasUv && determinant != 0.0f) {
+    s.tangent = objectToWorldDirection(inst, (e1 * dv2 - e2 * dv1) / determinant);
+    s.bitangent = -objectToWorldDirection(inst, (e2 * du1 - e1 * du2) / determinant);
   } else {
-    s.hasUv = false;
+    s.tangent = make_vec3(0.0f, 0.0f, 0.0f);
+    s.bitangent = make_vec3(0.0f, 0.0f, 0.0f);
   }
   if (dot(n, n) > 1e-12f) {
     // Vertex normals on the back of the face (bad data) are taken as facing the front.

@@ -72,6 +72,17 @@ WP_FN vec4 sampleTexture(WP_TEXTURE_BUFFERS uint index, vec2 uv) {
   return top * (1.0f - ay) + bottom * ay;
 }
 
+// Emitted radiance `factor` (glTF: emissiveFactor times KHR_materials_emissive_strength)
+// times the emissive texture `index` at uv; the factor alone without a texture (WP_INVALID)
+// or without texture coordinates. Hits and light samples both take it from here, so they agree.
+WP_FN vec3 texturedEmission(WP_TEXTURE_BUFFERS vec3 factor, uint index, bool withUv, vec2 uv) {
+  if (index == WP_INVALID || !withUv) {
+    return factor;
+  }
+  vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS index, uv);
+  return factor * make_vec3(t.x, t.y, t.z);
+}
+
 WP_END
 
 #endif

@@ -71,11 +71,14 @@ GpuPlane loadPlane(uint i) {
 
 GpuTriangleShading loadTriangleShading(uint i) {
   GpuTriangleShading t;
-  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 5u, 0u);
-  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 5u, 1u);
-  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 5u, 2u);
-  t.v = WP_FLOATS(triangleShadingTexels, i, 5u, 3u);
-  t.colors = WP_UINTS(triangleShadingTexels, i, 5u, 4u);
+  t.normal0 = WP_FLOATS(triangleShadingTexels, i, 8u, 0u);
+  t.normal1 = WP_FLOATS(triangleShadingTexels, i, 8u, 1u);
+  t.normal2 = WP_FLOATS(triangleShadingTexels, i, 8u, 2u);
+  t.v = WP_FLOATS(triangleShadingTexels, i, 8u, 3u);
+  t.colors = WP_UINTS(triangleShadingTexels, i, 8u, 4u);
+  t.tangent0 = WP_FLOATS(triangleShadingTexels, i, 8u, 5u);
+  t.tangent1 = WP_FLOATS(triangleShadingTexels, i, 8u, 6u);
+  t.tangent2 = WP_FLOATS(triangleShadingTexels, i, 8u, 7u);
   return t;
 }
 
@@ -90,12 +93,13 @@ uint loadTexelWord(uint i) { return texelFetch(texelTexels, int(i >> 2u))[i & 3u
 
 GpuMaterial loadMaterial(uint i) {
   GpuMaterial m;
-  m.baseColor = WP_FLOATS(materialTexels, i, 6u, 0u);
-  m.emission = WP_FLOATS(materialTexels, i, 6u, 1u);
-  m.surface = WP_FLOATS(materialTexels, i, 6u, 2u);
-  m.attenuation = WP_FLOATS(materialTexels, i, 6u, 3u);
-  m.info = WP_UINTS(materialTexels, i, 6u, 4u);
-  m.normalMap = WP_FLOATS(materialTexels, i, 6u, 5u);
+  m.baseColor = WP_FLOATS(materialTexels, i, 7u, 0u);
+  m.emission = WP_FLOATS(materialTexels, i, 7u, 1u);
+  m.surface = WP_FLOATS(materialTexels, i, 7u, 2u);
+  m.attenuation = WP_FLOATS(materialTexels, i, 7u, 3u);
+  m.info = WP_UINTS(materialTexels, i, 7u, 4u);
+  m.normalMap = WP_FLOATS(materialTexels, i, 7u, 5u);
+  m.emissiveMap = WP_UINTS(materialTexels, i, 7u, 6u);
   return m;
 }
 

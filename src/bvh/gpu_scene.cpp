@@ -3,6 +3,7 @@
 #include "bvh/gpu_scene.h"
 #include "bvh/gpu_scene_parts.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "bvh/bvh_builder.h"
+#include "bvh/light_emission.h"
 #include "core/log.h"
 #include "shaders/common/environment.h"
 #include "shaders/common/traverse.h"
@@ -105,12 +107,30 @@ Triangle triangleOf(const Mesh& mesh, size_t t) {
           mesh.positions[mesh.indices[3 * t + 2]]};
 }
 
+uint32_t textureIndex(int index) { return index < 0 ? WP_INVALID : uint32_t(index); }
+
+void packTextures(const Scene& scene, GpuScene& out) {
+  for (const Texture& texture : scene.textures) {
+    const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
+    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u);
+    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags)});
+    out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
+  }
+  // The Vulkan texel view reads four texels per RGBA32UI element.
+  out.texels.resize((out.texels.size() + 3) / 4 * 4, 0u);
+}
+
+// A textured emitter whose texture is black where the estimate looked keeps this fraction of
+// its factor's selection weight: the estimate may miss bright texels, and a light that can
+// never be sampled would be lost to next event estimation alone.
+constexpr float kMinimumTextureShare = 1e-3f;
+
 double seconds(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Vertex normals, TEXCOORD_0 and COLOR_0 of triangle t (zero normals and uvs, white, where
-// the mesh has none).
+// Vertex normals, TEXCOORD_0, COLOR_0 and TANGENT of triangle t (zero normals, uvs and
+// tangents, white, where the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
   gpu::GpuTriangleShading shading{};
   const uint32_t* corner = &mesh.indices[3 * t];
@@ -127,6 +147,11 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
     const glm::vec4 c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[corner[k]];
     const glm::uvec4 bytes = glm::uvec4(glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f));
     shading.colors[k] = bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
+  }
+  if (!mesh.tangents.empty()) {
+    shading.tangent0 = mesh.tangents[corner[0]];
+    shading.tangent1 = mesh.tangents[corner[1]];
+    shading.tangent2 = mesh.tangents[corner[2]];
   }
   return shading;
 }
@@ -156,19 +181,22 @@ struct InstanceCandidates {
   }
 };
 
-// Appends the world-space lights of one mesh instance and their selection weights.
-void appendLights(const Scene& scene, const Mesh& mesh, const std::vector<uint32_t>& emitters,
+// Appends the world-space lights of one mesh instance and their selection weights: power,
+// from the triangle's mean emission (so black parts of an emissive texture get few samples).
+void appendLights(const Scene& scene, const Mesh& mesh, const std::vector<pack_detail::Emitter>& emitters,
                   const glm::mat4& toWorld, std::vector<gpu::GpuLight>& lights, std::vector<double>& power) {
-  for (uint32_t t : emitters) {
-    Triangle v = triangleOf(mesh, t);
+  for (const pack_detail::Emitter& emitter : emitters) {
+    Triangle v = triangleOf(mesh, emitter.triangle);
     for (glm::vec3& p : v) {
       p = glm::vec3(toWorld * glm::vec4(p, 1.0f));
     }
-    const Material& material = scene.materials[mesh.materials[t]];
+    const Material& material = scene.materials[mesh.materials[emitter.triangle]];
     float area = 0.5f * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
     lights.push_back({glm::vec4(v[0], area), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
-                      glm::vec4(material.emission, 0.0f), glm::uvec4(0u, material.doubleSided ? 1u : 0u, 0u, 0u)});
-    power.push_back(static_cast<double>(luminance(material.emission)) * area * (material.doubleSided ? 2.0 : 1.0));
+                      glm::vec4(material.emission, emitter.weight),
+                      glm::uvec4(0u, material.doubleSided ? 1u : 0u, emitter.packed,
+                                 textureIndex(material.emissiveTexture))});
+    power.push_back(static_cast<double>(emitter.weight) * area * (material.doubleSided ? 2.0 : 1.0));
   }
 }
 
@@ -212,7 +240,7 @@ MeshPrimitives meshPrimitives(const Scene& scene, const Mesh& mesh) {
     bool degenerate = !(glm::dot(normal, normal) > 0.0f) || !isFinite(normal);
     if (scene.materials[mesh.materials[t]].isEmissive() && !degenerate) {
       prims.ordinal[t] = static_cast<uint32_t>(prims.emitters.size());
-      prims.emitters.push_back(static_cast<uint32_t>(t));
+      prims.emitters.push_back({static_cast<uint32_t>(t)});
     }
   }
   return prims;
@@ -266,15 +294,24 @@ void writeNodes(const Bvh& bvh, uint32_t primBase, uint32_t base, std::vector<gp
   }
 }
 
-void writeTriangles(const Mesh& mesh, const Bvh& bvh, const MeshPrimitives& prims, uint32_t firstTriangle,
-                    GpuScene& out) {
+void writeTriangles(const Scene& scene, const Mesh& mesh, const Bvh& bvh, MeshPrimitives& prims,
+                    uint32_t firstTriangle, GpuScene& out) {
   for (size_t i = 0; i < bvh.primIndices.size(); ++i) {
     uint32_t t = bvh.primIndices[i];
     Triangle v = triangleOf(mesh, t);
-    out.triangles[firstTriangle + i] = {glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f),
-                                        glm::vec4(v[2] - v[0], 0.0f),
-                                        glm::uvec4(mesh.materials[t], prims.ordinal[t], 0u, 0u)};
-    out.triangleShading[firstTriangle + i] = shadingOf(mesh, t);
+    const gpu::GpuTriangleShading shading = shadingOf(mesh, t);
+    const uint32_t packed = firstTriangle + static_cast<uint32_t>(i);
+    if (prims.ordinal[t] != WP_INVALID) {
+      const Material& material = scene.materials[mesh.materials[t]];
+      Emitter& emitter = prims.emitters[prims.ordinal[t]];
+      emitter.packed = packed;
+      glm::vec3 mean = meanEmission(out.textures, out.texels, shading, material.emission,
+                                    textureIndex(material.emissiveTexture));
+      emitter.weight = std::max(luminance(mean), kMinimumTextureShare * luminance(material.emission));
+    }
+    out.triangles[packed] = {glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
+                             glm::uvec4(mesh.materials[t], prims.ordinal[t], 0u, 0u)};
+    out.triangleShading[packed] = shading;
   }
 }
 
@@ -341,6 +378,7 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
 
 GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
   GpuScene out;
+  packTextures(scene, out);  // first: the light table weighs emissive textures
   double weightedSah = 0.0;
   meshes.clear();
   for (const Mesh& mesh : scene.meshes) {
@@ -354,8 +392,6 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
     if (!bvh.nodes.empty()) {
       packed.bounds = bvh.nodes[0].bounds;
     }
-    packed.emitters = std::move(prims.emitters);
-
     GpuMeshRange& range = out.meshes.emplace_back();
     range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
     range.triangleCount = static_cast<uint32_t>(mesh.triangleCount());
@@ -364,7 +400,8 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
     writeNodes(bvh, range.firstTriangle, range.rootNode, out.nodes);
     out.triangles.resize(out.triangles.size() + range.triangleCount);
     out.triangleShading.resize(out.triangles.size());
-    writeTriangles(mesh, bvh, prims, range.firstTriangle, out);
+    writeTriangles(scene, mesh, bvh, prims, range.firstTriangle, out);
+    packed.emitters = std::move(prims.emitters);
     if (mesh.deforming) {
       packed.bvh = std::move(bvh);
     }
@@ -375,15 +412,6 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
   packSky(scene, out);
   out.bvhBuildSeconds += packInstances(scene, meshes, out).tlas;
 
-  for (const Texture& texture : scene.textures) {
-    const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
-    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u);
-    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags)});
-    out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
-  }
-  // The Vulkan texel view reads four texels per RGBA32UI element.
-  out.texels.resize((out.texels.size() + 3) / 4 * 4, 0u);
-  auto textureIndex = [](int index) { return index < 0 ? WP_INVALID : uint32_t(index); };
   for (const Material& material : scene.materials) {
     out.materials.push_back(
         {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),
@@ -392,7 +420,8 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
          glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF,
                     textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
                     textureIndex(material.normalTexture)),
-         glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f)});
+         glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f),
+         glm::uvec4(textureIndex(material.emissiveTexture), 0u, 0u, 0u)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

@@ -11,18 +11,25 @@
 
 namespace wp::pack_detail {
 
+// An emissive non-degenerate triangle of a mesh, as the light table sees it.
+struct Emitter {
+  uint32_t triangle = 0;  // index in the mesh
+  uint32_t packed = 0;    // index in GpuScene::triangles (and triangleShading); set by writeTriangles
+  float weight = 0.0f;    // luminance of its mean emitted radiance (GpuLight::emission.w); set by writeTriangles
+};
+
 // One mesh's triangles as the bottom-level build and the light table see them.
 struct MeshPrimitives {
   std::vector<Aabb> bounds;  // per triangle, object space
   std::vector<glm::vec3> centroids;
-  std::vector<uint32_t> emitters;  // original indices of its emissive non-degenerate triangles
-  std::vector<uint32_t> ordinal;   // per triangle: its index in `emitters`, or WP_INVALID
+  std::vector<Emitter> emitters;  // its emissive non-degenerate triangles in the mesh's order
+  std::vector<uint32_t> ordinal;  // per triangle: its index in `emitters`, or WP_INVALID
 };
 
 // What the instance level needs of each packed mesh.
 struct PackedMesh {
   Aabb bounds;                     // object space
-  std::vector<uint32_t> emitters;  // as in MeshPrimitives
+  std::vector<Emitter> emitters;  // as in MeshPrimitives, after writeTriangles
   float sah = 0.0f;                // sahCost of its bottom level
   Bvh bvh;  // kept by packSceneParts for deforming meshes only (refitted per frame)
 };
@@ -41,11 +48,13 @@ uint32_t gpuNodeCount(const Bvh& bvh);
 // by primBase and child indices absolute. Requires out.size() >= base + gpuNodeCount(bvh).
 void writeNodes(const Bvh& bvh, uint32_t primBase, uint32_t base, std::vector<gpu::BvhNode>& out);
 
-// Writes the triangle and shading records of `mesh` in the leaf order of `bvh` (built over
-// prims of this mesh) to out.triangles and out.triangleShading from firstTriangle on.
-// Requires both arrays to hold firstTriangle + mesh.triangleCount() records.
-void writeTriangles(const Mesh& mesh, const Bvh& bvh, const MeshPrimitives& prims, uint32_t firstTriangle,
-                    GpuScene& out);
+// Writes the triangle and shading records of `mesh` (of `scene`) in the leaf order of `bvh`
+// (built over prims of this mesh) to out.triangles and out.triangleShading from firstTriangle
+// on, and sets each of prims.emitters' record index and light-selection weight (its mean
+// emission, textures included). Requires both arrays to hold firstTriangle +
+// mesh.triangleCount() records, and out.textures and out.texels packed.
+void writeTriangles(const Scene& scene, const Mesh& mesh, const Bvh& bvh, MeshPrimitives& prims,
+                    uint32_t firstTriangle, GpuScene& out);
 
 // Wall time of the instance level's parts.
 struct InstanceLevelSeconds {

@@ -44,6 +44,19 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
     } else if (!baked.normals.empty()) {
       baked.normals.resize(baked.positions.size(), glm::vec3(0.0f));
     }
+    if (!mesh.tangents.empty()) {
+      // Tangents are directions on the surface, so they take the transform itself. glTF's
+      // bitangent is w cross(normal, tangent), and a mirroring transform (det < 0) turns
+      // that cross product around relative to the transformed bitangent: flip w with it.
+      baked.tangents.resize(base, glm::vec4(0.0f));
+      for (const glm::vec4& t : mesh.tangents) {
+        glm::vec3 m = glm::mat3(inst.objectToWorld) * glm::vec3(t);
+        bool zero = glm::vec3(t) == glm::vec3(0.0f);
+        baked.tangents.push_back(zero ? t : glm::vec4(glm::normalize(m), det < 0.0f ? -t.w : t.w));
+      }
+    } else if (!baked.tangents.empty()) {
+      baked.tangents.resize(baked.positions.size(), glm::vec4(0.0f));
+    }
     if (!mesh.colors.empty() || !baked.colors.empty()) {
       baked.colors.resize(base, glm::vec4(1.0f));
       if (mesh.colors.empty()) {

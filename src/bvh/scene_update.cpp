@@ -105,7 +105,7 @@ const GpuScene& SceneUpdater::update(const Scene& posed) {
     }
     times_.refitMs += millisecondsSince(start);
     start = Clock::now();
-    pack_detail::writeTriangles(mesh, packed.bvh, prims, range.firstTriangle, gpu_);
+    pack_detail::writeTriangles(posed, mesh, packed.bvh, prims, range.firstTriangle, gpu_);
     packed.emitters = std::move(prims.emitters);
     times_.trianglesMs += millisecondsSince(start);
   }

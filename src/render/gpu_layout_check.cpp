@@ -7,11 +7,11 @@ namespace wp::gpu {
 
 static_assert(sizeof(BvhNode) == 64);
 static_assert(sizeof(GpuTriangle) == 64);
-static_assert(sizeof(GpuTriangleShading) == 80);
+static_assert(sizeof(GpuTriangleShading) == 128);
 static_assert(sizeof(GpuTexture) == 16);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(sizeof(GpuPlane) == 32);
-static_assert(sizeof(GpuMaterial) == 96);
+static_assert(sizeof(GpuMaterial) == 112);
 static_assert(sizeof(GpuLight) == 80);
 static_assert(sizeof(ThinLens) == 80);
 static_assert(sizeof(GpuEnvironment) == 32);

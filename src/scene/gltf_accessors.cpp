@@ -1,4 +1,4 @@
-// Bounds-checked reading of glTF accessors: vertex positions and indices.
+// Bounds-checked reading of glTF accessors: vertex attributes and indices.
 #include "scene/gltf_accessors.h"
 
 #include <algorithm>
@@ -95,6 +95,30 @@ const tinygltf::Accessor& lookUp(const Context& ctx, int index, const std::strin
   return ctx.model.accessors[static_cast<size_t>(index)];
 }
 
+// Reads a FLOAT accessor of `type` (VEC2 or VEC4, matching T) with the checks of
+// readVec3Attribute; `attribute` names it in messages.
+template <typename T>
+std::vector<T> readFloatVectors(const Context& ctx, int index, const std::string& where, const char* attribute,
+                                int type) {
+  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, attribute);
+  if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || accessor.type != type) {
+    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
+         std::string(attribute) + " must be FLOAT " + typeName(type) + ", not " +
+             componentName(accessor.componentType) + " " + typeName(accessor.type) +
+             "; re-export the scene without mesh quantization");
+  }
+  const ElementRange range = locate(ctx, index, where, sizeof(T));
+  std::vector<T> values(range.count);
+  for (size_t i = 0; i < range.count; ++i) {
+    std::memcpy(&values[i], range.first + i * range.stride, sizeof(T));
+    if (glm::any(glm::isnan(values[i])) || glm::any(glm::isinf(values[i]))) {
+      fail(ctx, where, "vertex " + std::to_string(i) + " of the " + attribute + " accessor " + std::to_string(index) +
+                           " is not finite; re-export the file");
+    }
+  }
+  return values;
+}
+
 }  // namespace
 
 std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int index, const std::string& where,
@@ -121,22 +145,11 @@ std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int index, const st
 }
 
 std::vector<glm::vec2> readTexCoords(const Context& ctx, int index, const std::string& where) {
-  const tinygltf::Accessor& accessor = lookUp(ctx, index, where, "TEXCOORD_0");
-  if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || accessor.type != TINYGLTF_TYPE_VEC2) {
-    fail(ctx, where + ": " + describe("accessor", static_cast<size_t>(index), accessor.name),
-         std::string("TEXCOORD_0 must be FLOAT VEC2, not ") + componentName(accessor.componentType) + " " +
-             typeName(accessor.type) + "; re-export the scene without mesh quantization");
-  }
-  const ElementRange range = locate(ctx, index, where, sizeof(glm::vec2));
-  std::vector<glm::vec2> uvs(range.count);
-  for (size_t i = 0; i < range.count; ++i) {
-    std::memcpy(&uvs[i], range.first + i * range.stride, sizeof(glm::vec2));
-    if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y)) {
-      fail(ctx, where, "vertex " + std::to_string(i) + " of the TEXCOORD_0 accessor " + std::to_string(index) +
-                           " is not finite; re-export the file");
-    }
-  }
-  return uvs;
+  return readFloatVectors<glm::vec2>(ctx, index, where, "TEXCOORD_0", TINYGLTF_TYPE_VEC2);
+}
+
+std::vector<glm::vec4> readTangents(const Context& ctx, int index, const std::string& where) {
+  return readFloatVectors<glm::vec4>(ctx, index, where, "TANGENT", TINYGLTF_TYPE_VEC4);
 }
 
 std::vector<glm::vec4> readColors(const Context& ctx, int index, const std::string& where) {

@@ -1,4 +1,4 @@
-// Bounds-checked reading of glTF accessors: vertex positions and indices.
+// Bounds-checked reading of glTF accessors: vertex attributes and indices.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +21,9 @@ std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int accessor, const
 
 // Reads a FLOAT VEC2 accessor (TEXCOORD_0) with the same checks as readVec3Attribute.
 std::vector<glm::vec2> readTexCoords(const Context& ctx, int accessor, const std::string& where);
+
+// Reads a FLOAT VEC4 accessor (TANGENT) as stored, with the same checks as readVec3Attribute.
+std::vector<glm::vec4> readTangents(const Context& ctx, int accessor, const std::string& where);
 
 // Reads COLOR_0 (VEC3 or VEC4; FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT) as
 // RGBA in [0, 1], alpha 1 for VEC3, with the same checks as readVec3Attribute.

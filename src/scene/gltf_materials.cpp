@@ -105,12 +105,12 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   return out;
 }
 
-// Reads the base colour, metallic-roughness and normal textures into `table`; returns
-// whether the material has textures that wavepath ignores (emissive, occlusion, or a
-// texture on another TEXCOORD set than 0).
+// Reads the base colour, metallic-roughness, normal and emissive textures into `table`;
+// returns whether the material has textures that wavepath ignores (occlusion, or a texture
+// on another TEXCOORD set than 0).
 bool readTextures(const tinygltf::Material& material, const std::string& where,
                   TextureTable& table, Material& out) {
-  bool ignored = material.emissiveTexture.index >= 0 || material.occlusionTexture.index >= 0;
+  bool ignored = material.occlusionTexture.index >= 0;
   const tinygltf::NormalTextureInfo& normal = material.normalTexture;
   if (normal.index >= 0 && normal.texCoord == 0) {
     out.normalTexture = table.add(normal.index, false, where);
@@ -125,8 +125,13 @@ bool readTextures(const tinygltf::Material& material, const std::string& where,
   if (metallicRoughness.index >= 0 && metallicRoughness.texCoord == 0) {
     out.metallicRoughnessTexture = table.add(metallicRoughness.index, false, where);
   }
+  const tinygltf::TextureInfo& emissive = material.emissiveTexture;
+  if (emissive.index >= 0 && emissive.texCoord == 0) {
+    out.emissiveTexture = table.add(emissive.index, true, where);
+  }
   return ignored || (base.index >= 0 && base.texCoord != 0) ||
-         (metallicRoughness.index >= 0 && metallicRoughness.texCoord != 0);
+         (metallicRoughness.index >= 0 && metallicRoughness.texCoord != 0) ||
+         (emissive.index >= 0 && emissive.texCoord != 0);
 }
 
 }  // namespace
@@ -142,7 +147,7 @@ std::vector<Material> convertMaterials(const Context& ctx, std::vector<Texture>&
   }
   if (ignoring > 0) {
     warnAt(ctx, "", std::to_string(ignoring) + " of " + std::to_string(materials.size()) +
-                        " materials have emissive or occlusion textures, or textures on TEXCOORD_1 or "
+                        " materials have occlusion textures, or textures on TEXCOORD_1 or "
                         "later, which wavepath ignores: those render with their constant factors");
   }
   return materials;

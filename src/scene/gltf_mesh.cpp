@@ -42,19 +42,20 @@ std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, int mode) {
   return out;
 }
 
-// The accessors a primitive's vertices come from; primitives with the same pair share them.
+// The accessors a primitive's vertices come from; primitives with the same ones share them.
 struct VertexSource {
   int position = -1;
-  int normal = -1;  // -1: none
-  int uv = -1;      // TEXCOORD_0, -1: none
-  int color = -1;   // COLOR_0, -1: none
+  int normal = -1;   // -1: none
+  int uv = -1;       // TEXCOORD_0, -1: none
+  int color = -1;    // COLOR_0, -1: none
+  int tangent = -1;  // TANGENT, -1: none (also when there is no NORMAL: glTF then ignores it)
   // With morph targets or skins, the primitive: its targets and joints are read with its
   // vertices, so its vertices are shared with no other primitive. -1 otherwise.
   int primitive = -1;
 
   bool operator<(const VertexSource& other) const {
-    return std::tie(position, normal, uv, color, primitive) <
-           std::tie(other.position, other.normal, other.uv, other.color, other.primitive);
+    return std::tie(position, normal, uv, color, tangent, primitive) <
+           std::tie(other.position, other.normal, other.uv, other.color, other.tangent, other.primitive);
   }
 };
 
@@ -99,9 +100,12 @@ private:
     const auto normal = primitive.attributes.find("NORMAL");
     const auto uv = primitive.attributes.find("TEXCOORD_0");
     const auto color = primitive.attributes.find("COLOR_0");
-    const VertexSource source{position->second, normal == primitive.attributes.end() ? -1 : normal->second,
+    const auto tangent = primitive.attributes.find("TANGENT");
+    const bool hasNormal = normal != primitive.attributes.end();
+    const VertexSource source{position->second, hasNormal ? normal->second : -1,
                               uv == primitive.attributes.end() ? -1 : uv->second,
                               color == primitive.attributes.end() ? -1 : color->second,
+                              hasNormal && tangent != primitive.attributes.end() ? tangent->second : -1,
                               deformation_ ? static_cast<int>(p) : -1};
     const uint32_t vertexCount = addVertices(source, where);
     if (deformation_) addDeformation(primitive, vertexCount, where);
@@ -193,6 +197,25 @@ private:
       }
       mesh_.colors.resize(mesh_.positions.size() - positions.size(), glm::vec4(1.0f));
       mesh_.colors.insert(mesh_.colors.end(), colors.begin(), colors.end());
+    }
+    if (source.tangent >= 0 || !mesh_.tangents.empty()) {
+      std::vector<glm::vec4> tangents(positions.size(), glm::vec4(0.0f));
+      if (source.tangent >= 0) {
+        tangents = readTangents(ctx_, source.tangent, where);
+        if (tangents.size() != positions.size()) {
+          fail(ctx_, where,
+               "TANGENT has " + std::to_string(tangents.size()) + " vertices but POSITION " +
+                   std::to_string(positions.size()) + "; re-export the file");
+        }
+        // Unit xyz and a sign of exactly +-1, as glTF requires but exporters do not always
+        // write; zero ones stay zero (a triangle with three falls back to its uv gradient).
+        for (glm::vec4& t : tangents) {
+          const float length = glm::length(glm::vec3(t));
+          t = length > 0.0f ? glm::vec4(glm::vec3(t) / length, t.w < 0.0f ? -1.0f : 1.0f) : glm::vec4(0.0f);
+        }
+      }
+      mesh_.tangents.resize(mesh_.positions.size() - positions.size(), glm::vec4(0.0f));
+      mesh_.tangents.insert(mesh_.tangents.end(), tangents.begin(), tangents.end());
     }
     return count;
   }

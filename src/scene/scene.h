@@ -35,6 +35,7 @@ struct Material {
   int metallicRoughnessTexture = -1;  // index into Scene::textures (linear; B metallic, G roughness)
   int normalTexture = -1;             // index into Scene::textures (linear, tangent space)
   float normalScale = 1.0f;
+  int emissiveTexture = -1;           // index into Scene::textures (sRGB), multiplies emission
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
@@ -50,6 +51,9 @@ struct Mesh {
   std::vector<glm::vec2> uvs;
   // glTF COLOR_0 per vertex (linear RGBA), or empty when no primitive has it; white where one lacks it.
   std::vector<glm::vec4> colors;
+  // glTF TANGENT per vertex (xyz unit, w the bitangent sign, +-1), or empty when no primitive
+  // has it; zero where one lacks it or has no NORMAL (glTF ignores tangents there).
+  std::vector<glm::vec4> tangents;
   std::vector<uint32_t> indices;    // 3 per triangle, counter-clockwise = front face
   std::vector<uint32_t> materials;  // one material index per triangle
   // Set when an animation moves its vertices (morph targets or a skin): its BVH is then
