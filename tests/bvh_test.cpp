@@ -332,12 +332,12 @@ TEST(Intersect, PlaneAndSlabs) {
 
 Hit traceClosest(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
   return wp::gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                               g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax);
+                               g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
 }
 
 bool traceAny(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
   return wp::gpu::traceAny(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                           g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax);
+                           g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
 }
 
 // Every plane, every instance, every triangle, with the same object-space rays as traverse.h.
