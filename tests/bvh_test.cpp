@@ -335,12 +335,12 @@ TEST(Intersect, PlaneAndSlabs) {
 
 Hit traceClosest(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
   return wp::gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                               g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax);
+                               g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
 }
 
 bool traceAny(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
   return wp::gpu::traceAny(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                           g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax);
+                           g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
 }
 
 // Every plane, every instance, every triangle, with the same object-space rays as traverse.h.
@@ -755,7 +755,8 @@ TEST(PackScene, MaterialsPlanesAndSingularInstances) {
   EXPECT_EQ(g.planes[0].normalDistance, glm::vec4(0, 0, 1, 2));
   EXPECT_EQ(g.planes[0].info.x, 1u);
   ASSERT_EQ(g.instances.size(), 1u);
-  EXPECT_EQ(g.instances[0].info, glm::uvec4(WP_INSTANCE_SPHERE, 1u, WP_INVALID, 0u));
+  // No lights of its own (z), and no motion keys (w): it stands still.
+  EXPECT_EQ(g.instances[0].info, glm::uvec4(WP_INSTANCE_SPHERE, 1u, WP_INVALID, WP_INVALID));
   EXPECT_EQ(g.boundsMin, glm::vec3(-2.0f));
   EXPECT_EQ(g.boundsMax, glm::vec3(2.0f));
 }

@@ -206,7 +206,7 @@ TEST(InstanceBaking, RaysHitTheSameSurfacesBeforeAndAfter) {
     glm::vec3 direction = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
     auto trace = [&](const GpuScene& g) {
       return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot,
-                               0u, origin, direction, WP_FLT_MAX);
+                               0u, origin, direction, WP_FLT_MAX, 0.0f);
     };
     gpu::Hit a = trace(instanced);
     gpu::Hit b = trace(baked);

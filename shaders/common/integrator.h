@@ -151,7 +151,8 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   uint bsdfFlags = params.shading.x;
   uint lightSelection = params.shading.z;
 
-  SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t);
+  float time = ray.throughput.w;
+  SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t, time);
   GpuMaterial m = texturedMaterial(WP_TEXTURE_BUFFER_ARGS WP_MATERIAL(s.material), s);
   s.shadingNormal = normalMapped(WP_TEXTURE_BUFFER_ARGS m, s);
   vec3 wo = -direction;
@@ -230,7 +231,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       r.shadow.direction = make_vec4(ls.direction.x, ls.direction.y, ls.direction.z,
                                      ls.distance * WP_SHADOW_RAY_SHORTEN);
       vec3 c = clampedContribution(params, throughput * unshadowed * (weight / ls.pdf));
-      r.shadow.contribution = make_vec4(c.x, c.y, c.z, 0.0f);
+      r.shadow.contribution = make_vec4(c.x, c.y, c.z, time);
       r.flags |= WP_SHADE_SHADOW;
     }
   }
@@ -265,7 +266,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       float rayPdf = isDelta ? 0.0f : bs.pdf;
       r.next.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
       r.next.direction = make_vec4(wi.x, wi.y, wi.z, rayPdf);
-      r.next.throughput = make_vec4(nextThroughput.x, nextThroughput.y, nextThroughput.z, 0.0f);
+      r.next.throughput = make_vec4(nextThroughput.x, nextThroughput.y, nextThroughput.z, time);
       r.next.state = make_uvec4(rng, bounce + 1u, 0u, 0u);
       r.flags |= WP_SHADE_EXTEND;
     }

@@ -116,12 +116,22 @@ WP_STRUCT_END(GpuTexture)
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
 WP_STRUCT(GpuInstance)
-  vec4 worldToObject0;  // rows of the 3x4 world-to-object matrix
+  vec4 worldToObject0;  // rows of the 3x4 world-to-object matrix (at shutter open if it moves)
   vec4 worldToObject1;
   vec4 worldToObject2;
   uvec4 info;  // x: WP_INSTANCE_*, y: BVH root node (mesh) or material (sphere),
-               // z: first light index of this instance's emissive triangles, w: unused
+               // z: first light index of this instance's emissive triangles (WP_INVALID:
+               // none sampled), w: WP_INVALID if it stands still, else the index of its
+               // two motion keys in the instance buffer (motion.h)
 WP_STRUCT_END(GpuInstance)
+
+// A moving instance's placement at shutter open and at shutter close is kept as two motion
+// keys, stored after the placed instances in the instance buffer in GpuInstance records (so
+// no binding is added): a TRS key holds the translation in worldToObject0.xyz, the rotation
+// quaternion (x, y, z, w) in worldToObject1 and the scale in worldToObject2.xyz; a matrix key
+// (a transform with shear) the rows of the 3x4 object-to-world matrix. info.x says which.
+#define WP_MOTION_KEY_TRS 0u
+#define WP_MOTION_KEY_MATRIX 1u
 
 // Infinite plane dot(n, p) = d, 32 bytes.
 WP_STRUCT(GpuPlane)
@@ -186,7 +196,7 @@ WP_STRUCT_END(RenderParams)
 WP_STRUCT(PathRay)
   vec4 origin;      // xyz; w: asFloat(path slot in this pass)
   vec4 direction;   // xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
-  vec4 throughput;  // rgb; w: unused
+  vec4 throughput;  // rgb; w: the path's shutter time in [0, 1) (motion blur)
   uvec4 state;      // x: RNG state, y: bounce of the vertex this ray will hit, z, w: unused
 WP_STRUCT_END(PathRay)
 
@@ -201,7 +211,7 @@ WP_STRUCT_END(HitRecord)
 WP_STRUCT(ShadowRay)
   vec4 origin;        // xyz; w: asFloat(path slot)
   vec4 direction;     // xyz: unit; w: distance to the light sample (exclusive)
-  vec4 contribution;  // rgb: radiance added to the path if unoccluded
+  vec4 contribution;  // rgb: radiance added to the path if unoccluded; w: the path's shutter time
 WP_STRUCT_END(ShadowRay)
 
 // Queue sizes and indirect dispatch arguments, written on the GPU. Kernels address it as a

@@ -30,6 +30,11 @@ WP_FN float rngFloat(uint state) {
   return toFloat(word >> 8u) * 5.9604644775390625e-8f;
 }
 
+// A path's normalized shutter time in [0, 1) (motion blur), from the state rngSeed gave it:
+// hashed apart from the path's stream rather than drawn from it, so that no other dimension
+// shifts and scenes without motion render bit for bit as they did before time existed.
+WP_FN float rngTime(uint seedState) { return rngFloat(pcgHash(seedState ^ 0x6d2b79f5u)); }
+
 WP_END
 
 #endif

@@ -45,7 +45,8 @@ WP_FN QueueCounters advanceCounters(QueueCounters c, uint queue) {
 // The camera ray of path slot `slot` of the pass `pc`: slot i is pixel (firstPixel + i) %
 // pixels of sample firstSample + (firstPixel + i) / pixels (see PassConstants), through a
 // uniformly jittered point of that pixel (a box filter) and a point uniform on the lens
-// aperture, with the path's random stream seeded from (pixel, sample, seed).
+// aperture, at a shutter time uniform in [0, 1), with the path's random stream seeded from
+// (pixel, sample, seed).
 WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint pixels = params.image.z;
   uint linear = pc.pass.x + slot;
@@ -53,6 +54,7 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint sampleIndex = pc.pass.y + linear / pixels;
 
   uint rng = rngSeed(pixel, sampleIndex, params.image.w);
+  float time = rngTime(rng);
   rng = rngNext(rng);
   float jx = rngFloat(rng);
   rng = rngNext(rng);
@@ -68,7 +70,7 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   PathRay ray;
   ray.origin = make_vec4(camera.origin.x, camera.origin.y, camera.origin.z, asFloat(slot));
   ray.direction = make_vec4(camera.direction.x, camera.direction.y, camera.direction.z, 0.0f);
-  ray.throughput = make_vec4(1.0f, 1.0f, 1.0f, 1.0f);
+  ray.throughput = make_vec4(1.0f, 1.0f, 1.0f, time);
   ray.state = make_uvec4(rng, 0u, 0u, 0u);
   return ray;
 }
@@ -79,7 +81,7 @@ WP_FN uint pathSlot(vec4 origin) { return asUint(origin.w); }
 // Extend: the closest hit of `ray`, as shade reads it.
 WP_FN HitRecord extendRay(WP_SCENE_BUFFERS RenderParams params, PathRay ray) {
   Hit h = traceClosest(WP_SCENE_BUFFER_ARGS params.counts.y, params.counts.x, xyz(ray.origin), xyz(ray.direction),
-                       WP_FLT_MAX);
+                       WP_FLT_MAX, ray.throughput.w);
   HitRecord record;
   record.hit = make_uvec4(h.instance == WP_INVALID ? WP_INVALID : asUint(h.t), h.instance, h.primitive, 0u);
   return record;
@@ -94,7 +96,7 @@ WP_FN ShadeResult shadePath(WP_SHADING_BUFFERS RenderParams params, PathRay ray,
 // Connect: whether nothing blocks the shadow ray before its light sample.
 WP_FN bool shadowRayUnoccluded(WP_SCENE_BUFFERS RenderParams params, ShadowRay s) {
   return !traceAny(WP_SCENE_BUFFER_ARGS params.counts.y, params.counts.x, xyz(s.origin), xyz(s.direction),
-                   s.direction.w);
+                   s.direction.w, s.contribution.w);
 }
 
 WP_END

@@ -4,6 +4,7 @@
 #define WP_SURFACE_H
 
 #include "layout.h"
+#include "motion.h"
 
 WP_BEGIN
 
@@ -89,8 +90,9 @@ WP_FN vec2 uvAt(GpuTriangleShading shading, vec2 b) {
 
 WP_FN bool hasUv(GpuTriangleShading shading) { return shading.v.w != 0.0f; }
 
-// `instanceField` and `primitive` are HitRecord.hit.y and .z of a hit (not a miss).
-WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive, vec3 position) {
+// `instanceField` and `primitive` are HitRecord.hit.y and .z of a hit (not a miss) at the
+// normalized shutter time `time` the ray was traced at (moving instances are placed then).
+WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
   SurfaceHit s;
   s.position = position;
   s.light = WP_INVALID;
@@ -106,7 +108,7 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
     s.material = plane.info.x;
     return s;
   }
-  GpuInstance inst = WP_INSTANCE(instanceField);
+  GpuInstance inst = instanceAt(WP_INSTANCE_BUFFER_ARG instanceField, time);
   if (inst.info.x == WP_INSTANCE_SPHERE) {
     s.normal = normalToWorld(inst, pointToObject(inst, position));
     s.shadingNormal = s.normal;
@@ -155,7 +157,7 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
     s.shadingNormal = dot(world, s.normal) >= 0.0f ? world : -world;
   }
   s.material = tri.info.x;
-  s.light = tri.info.y == WP_INVALID ? WP_INVALID : inst.info.z + tri.info.y;
+  s.light = tri.info.y == WP_INVALID || inst.info.z == WP_INVALID ? WP_INVALID : inst.info.z + tri.info.y;
   return s;
 }
 

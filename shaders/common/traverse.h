@@ -5,6 +5,7 @@
 
 #include "intersect.h"
 #include "layout.h"
+#include "motion.h"
 
 // Scene elements are read through WP_NODE(i) and friends (layout.h): C++ and OpenCL index the
 // arrays passed as the leading arguments, GLSL fetches from texel buffers it declares.
@@ -81,7 +82,8 @@ WP_FN uint packEntry(uint index, uint count) { return index | (count << WP_ENTRY
 WP_FN uint entryIndex(uint entry) { return entry & WP_ENTRY_INDEX_MASK; }
 WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
 
-// Nearest hit at 0 < t < tMax, or with anyHit the first one found.
+// Nearest hit at 0 < t < tMax, or with anyHit the first one found, with moving instances
+// placed at normalized shutter time `time` (motion.h).
 //
 // Each level is one flat loop over stack entries. An iteration either tests a node's two
 // children (the nearer becomes the next entry, the farther is pushed) or intersects one leaf
@@ -92,7 +94,7 @@ WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
 // The bottom level runs inside a top-level leaf and stacks its entries above the top
 // level's in the same stack.
 WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
-                     float tMax, bool anyHit) {
+                     float tMax, float time, bool anyHit) {
   Hit hit;
   hit.t = tMax;
   hit.instance = WP_INVALID;
@@ -128,7 +130,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
     } else {
       // A top-level leaf holds one instance (GpuScene packs one per leaf).
       uint i = entryIndex(entry);
-      GpuInstance inst = WP_INSTANCE(i);
+      GpuInstance inst = instanceAt(WP_INSTANCE_BUFFER_ARG i, time);
       vec3 o = instanceRayOrigin(inst, origin);
       vec3 d = instanceRayDirection(inst, direction);
       if (inst.info.x == WP_INSTANCE_SPHERE) {
@@ -229,15 +231,18 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
   return hit;
 }
 
-// Closest hit at 0 < t < tMax. Requires a non-zero direction and a scene packed by
-// wp::packScene (tlasRoot = GpuScene::tlasRoot, planeCount = its number of planes).
-WP_FN Hit traceClosest(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax) {
-  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, false);
+// Closest hit at 0 < t < tMax at normalized shutter time `time` in [0, 1] (which only moving
+// instances see). Requires a non-zero direction and a scene packed by wp::packScene
+// (tlasRoot = GpuScene::tlasRoot, planeCount = its number of planes).
+WP_FN Hit traceClosest(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
+                       float time) {
+  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, time, false);
 }
 
 // Whether anything lies at 0 < t < tMax (shadow rays). Same requirements as traceClosest.
-WP_FN bool traceAny(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax) {
-  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, true).instance !=
+WP_FN bool traceAny(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
+                    float time) {
+  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, time, true).instance !=
          WP_INVALID;
 }
 

@@ -36,4 +36,15 @@ struct Aabb {
   }
 };
 
+// The box around `b`'s eight corners mapped by the affine `m`.
+inline Aabb transformBox(const glm::mat4& m, const Aabb& b) {
+  Aabb out;
+  for (int corner = 0; corner < 8; ++corner) {
+    glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                (corner & 4) ? b.max.z : b.min.z);
+    out.grow(glm::vec3(m * glm::vec4(p, 1.0f)));
+  }
+  return out;
+}
+
 }  // namespace wp

@@ -8,9 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "bvh/bvh_builder.h"
+#include "bvh/instance_motion.h"
 #include "bvh/light_emission.h"
 #include "core/log.h"
 #include "shaders/common/environment.h"
@@ -42,16 +44,6 @@ void setChild(glm::vec4& lo, glm::vec4& hi, const Aabb& bounds, uint32_t index, 
 
 void setEmptyChild(glm::vec4& lo, glm::vec4& hi) {
   setChild(lo, hi, Aabb{}, WP_INVALID, 0);
-}
-
-Aabb transformBox(const glm::mat4& m, const Aabb& b) {
-  Aabb out;
-  for (int corner = 0; corner < 8; ++corner) {
-    glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-                (corner & 4) ? b.max.z : b.min.z);
-    out.grow(glm::vec3(m * glm::vec4(p, 1.0f)));
-  }
-  return out;
 }
 
 gpu::GpuInstance makeInstance(const glm::mat4& worldToObject, glm::uvec4 info) {
@@ -156,28 +148,45 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
   return shading;
 }
 
-// Instances before the top-level build: their GPU record, world bounds and source.
+bool isInvertible(const glm::mat4& toWorld) {
+  glm::mat4 toObject = glm::inverse(toWorld);
+  bool invertible = glm::determinant(toWorld) != 0.0f;
+  for (int col = 0; col < 4 && invertible; ++col) {
+    invertible = isFinite(glm::vec3(toObject[col])) && std::isfinite(toObject[col].w);
+  }
+  return invertible;
+}
+
+// Instances before the top-level build: their GPU record, world bounds (over the shutter
+// for moving ones), motion keys and source.
 struct InstanceCandidates {
   std::vector<gpu::GpuInstance> records;
   std::vector<Aabb> worldBounds;
   std::vector<uint32_t> mesh;  // WP_INVALID for spheres
   std::vector<glm::mat4> objectToWorld;
+  std::vector<std::optional<MotionKeys>> motion;
 
-  void add(const glm::mat4& toWorld, const Aabb& objectBounds, glm::uvec4 info, uint32_t meshIndex,
-           const std::string& what) {
-    glm::mat4 toObject = glm::inverse(toWorld);
-    bool invertible = glm::determinant(toWorld) != 0.0f;
-    for (int col = 0; col < 4 && invertible; ++col) {
-      invertible = isFinite(glm::vec3(toObject[col])) && std::isfinite(toObject[col].w);
-    }
-    if (!invertible) {
+  void add(const glm::mat4& toWorld, const std::optional<glm::mat4>& toWorldAtClose, const Aabb& objectBounds,
+           glm::uvec4 info, uint32_t meshIndex, const std::string& what) {
+    if (!isInvertible(toWorld)) {
       warn(what + " has a singular transform (a zero scale?) and is left out");
       return;
     }
-    records.push_back(makeInstance(toObject, info));
-    worldBounds.push_back(transformBox(toWorld, objectBounds));
+    std::optional<MotionKeys> keys;
+    if (toWorldAtClose) {
+      // The interpolation from one orientation to the other would pass through a singular
+      // transform, where the object-space ray is undefined.
+      if (!isInvertible(*toWorldAtClose) || glm::determinant(toWorld) * glm::determinant(*toWorldAtClose) <= 0.0f) {
+        warn(what + " turns inside out or singular during the shutter; it is rendered still, as at shutter open");
+      } else {
+        keys = makeMotionKeys(toWorld, *toWorldAtClose);
+      }
+    }
+    records.push_back(makeInstance(glm::inverse(toWorld), info));
+    worldBounds.push_back(keys ? sweptBounds(*keys, objectBounds) : transformBox(toWorld, objectBounds));
     mesh.push_back(meshIndex);
     objectToWorld.push_back(toWorld);
+    motion.push_back(keys);
   }
 };
 
@@ -323,15 +332,15 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
     const MeshInstance& inst = scene.instances[i];
     const GpuMeshRange& range = out.meshes[inst.mesh];
     if (range.triangleCount > 0) {
-      candidates.add(inst.objectToWorld, meshes[inst.mesh].bounds,
-                     glm::uvec4(WP_INSTANCE_MESH, range.rootNode, 0u, 0u), inst.mesh,
+      candidates.add(inst.objectToWorld, inst.objectToWorldAtClose, meshes[inst.mesh].bounds,
+                     glm::uvec4(WP_INSTANCE_MESH, range.rootNode, 0u, WP_INVALID), inst.mesh,
                      "instance " + std::to_string(i) + " of mesh '" + scene.meshes[inst.mesh].name + "'");
     }
   }
   Aabb unitCube{glm::vec3(-1.0f), glm::vec3(1.0f)};
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
-    candidates.add(scene.spheres[i].objectToWorld, unitCube,
-                   glm::uvec4(WP_INSTANCE_SPHERE, scene.spheres[i].material, WP_INVALID, 0u), WP_INVALID,
+    candidates.add(scene.spheres[i].objectToWorld, scene.spheres[i].objectToWorldAtClose, unitCube,
+                   glm::uvec4(WP_INSTANCE_SPHERE, scene.spheres[i].material, WP_INVALID, WP_INVALID), WP_INVALID,
                    "sphere " + std::to_string(i));
   }
 
@@ -352,7 +361,11 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
   writeNodes(tlas, 0, out.tlasRoot, out.nodes);
   time.tlas = seconds(start);
 
-  // Instances in top-level leaf order, each mesh instance followed by its block of lights.
+  // Instances in top-level leaf order, each still mesh instance followed by its block of
+  // lights. A moving instance's emitters are not light-sampled: the table holds world-space
+  // triangles at one time, which would put the light where the path's time does not see
+  // it. They stay emitters that BSDF sampling finds (MIS weight 1, light pdf 0), so the
+  // image stays unbiased at the cost of the noise of unsampled lights.
   start = Clock::now();
   out.instances.clear();
   out.lights.clear();
@@ -360,11 +373,22 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
   for (uint32_t c : tlas.primIndices) {
     gpu::GpuInstance inst = candidates.records[c];
     uint32_t mesh = candidates.mesh[c];
-    if (mesh != WP_INVALID) {
+    if (candidates.motion[c]) {
+      inst.info.z = WP_INVALID;
+    } else if (mesh != WP_INVALID) {
       inst.info.z = static_cast<uint32_t>(out.lights.size());
       appendLights(scene, scene.meshes[mesh], meshes[mesh].emitters, candidates.objectToWorld[c], out.lights, power);
     }
     out.instances.push_back(inst);
+  }
+  // Motion keys go after the placed instances (the top level's leaves), a pair per mover.
+  out.placedInstances = static_cast<uint32_t>(out.instances.size());
+  for (uint32_t j = 0; j < out.placedInstances; ++j) {
+    if (const std::optional<MotionKeys>& keys = candidates.motion[tlas.primIndices[j]]) {
+      out.instances[j].info.w = static_cast<uint32_t>(out.instances.size());
+      out.instances.push_back(keys->open);
+      out.instances.push_back(keys->close);
+    }
   }
   buildLightTable(out.lights, power);
   double trianglePower = 0.0;

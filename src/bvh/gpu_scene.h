@@ -29,13 +29,15 @@ struct GpuScene {
   std::vector<gpu::GpuTriangleShading> triangleShading;  // parallel to `triangles`
   std::vector<gpu::GpuTexture> textures;
   std::vector<uint32_t> texels;  // every texture's RGBA8 texels, padded to a multiple of 4
-  // Mesh instances and spheres in top-level leaf order. Instances of meshes without
-  // triangles and instances with a singular transform are left out.
+  // Mesh instances and spheres in top-level leaf order (the first placedInstances), then the
+  // motion keys of the moving ones (layout.h). Instances of meshes without triangles and
+  // instances with a singular transform are left out.
   std::vector<gpu::GpuInstance> instances;
+  uint32_t placedInstances = 0;
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
-  // World-space emissive triangles: for each mesh instance in `instances` order, its mesh's
-  // emissive non-degenerate triangles in the mesh's original order.
+  // World-space emissive triangles: for each still mesh instance in `instances` order, its
+  // mesh's emissive non-degenerate triangles in the mesh's original order.
   std::vector<gpu::GpuLight> lights;
   // The sky (environment.h): radiance texels, row and column distributions, settings. A
   // scene without a sky gets one black texel, never sampled.

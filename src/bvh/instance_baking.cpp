@@ -19,14 +19,16 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
   for (const MeshInstance& inst : scene.instances) {
     const Mesh& mesh = scene.meshes[inst.mesh];
     float det = glm::determinant(glm::mat3(inst.objectToWorld));
-    if (uses[inst.mesh] != 1 || det == 0.0f || inst.animated || mesh.deforming) {
+    if (uses[inst.mesh] != 1 || det == 0.0f || inst.animated || mesh.deforming || inst.objectToWorldAtClose) {
       // Shared meshes stay instanced; singular transforms are left for the packer to report;
-      // animated ones stay apart so that a new pose needs no re-baking.
+      // animated and moving ones stay apart so that a new pose needs no re-baking and motion
+      // blur can move them.
       if (remap[inst.mesh] == UINT32_MAX) {
         remap[inst.mesh] = uint32_t(out.meshes.size());
         out.meshes.push_back(mesh);
       }
-      out.instances.push_back({remap[inst.mesh], inst.objectToWorld, inst.animated});
+      MeshInstance& kept = out.instances.emplace_back(inst);
+      kept.mesh = remap[inst.mesh];
       continue;
     }
     uint32_t base = uint32_t(baked.positions.size());

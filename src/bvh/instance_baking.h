@@ -9,9 +9,10 @@ namespace wp {
 // transform) transformed into world space and merged into one mesh under an identity
 // instance, as Cycles does: a ray then walks one BVH over that geometry instead of a
 // top-level BVH whose leaves each start another traversal. Meshes placed several times stay
-// instanced, and so do animated instances and deforming meshes. Front faces keep glTF's rule (a transform with a negative determinant turns
-// clockwise triangles into front faces), so mirrored meshes get their winding swapped
-// (and their TANGENT bitangent signs flipped).
+// instanced, and so do animated and moving instances and deforming meshes. Front faces keep
+// glTF's rule (a transform with a negative determinant turns clockwise triangles into front
+// faces), so mirrored meshes get their winding swapped (and their TANGENT bitangent signs
+// flipped).
 Scene bakeSingleUseMeshes(const Scene& scene);
 
 }  // namespace wp

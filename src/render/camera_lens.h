@@ -17,8 +17,8 @@ struct GpuScene;
 // Requires camera.optics.focusDistance > 0 when camera.optics.fNumber > 0.
 gpu::ThinLens makeLens(const Camera& camera, uint32_t width, uint32_t height);
 
-// Distance along the view axis to what the centre of the image sees, for autofocus; 10 m
-// when the centre ray leaves the scene.
+// Distance along the view axis to what the centre of the image sees (moving instances where
+// they are at shutter open), for autofocus; 10 m when the centre ray leaves the scene.
 float autofocusDistance(const Camera& camera, const GpuScene& scene);
 
 }  // namespace wp

@@ -28,7 +28,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.mode = glm::uvec4(settings.maxBounces, mode, settings.russianRouletteStart, uint32_t(gpuScene.lights.size()));
   uint64_t totalPaths = uint64_t(pixels) * settings.samplesPerPixel;
   uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
-  p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, uint32_t(gpuScene.instances.size()),
+  p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, gpuScene.placedInstances,
                         maxPaths);
   uint32_t bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
                        (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);

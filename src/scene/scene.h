@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,11 @@ struct MeshInstance {
   // Set when an animation moves it (its node or an ancestor has a channel): it then stays an
   // instance, so a new pose rebuilds only the top-level BVH.
   bool animated = false;
+  // Motion blur: where it is at shutter close, objectToWorld being where it is at shutter
+  // open (in between: translation and scale linear, rotation by slerp; see motion.h). Unset:
+  // it stands still. Only the transform moves: a deforming mesh's vertices are its pose at
+  // shutter open.
+  std::optional<glm::mat4> objectToWorldAtClose;
 };
 
 // Analytic sphere: the unit sphere at the origin mapped by objectToWorld (radius and
@@ -89,6 +95,7 @@ struct MeshInstance {
 struct Sphere {
   glm::mat4 objectToWorld{1.0f};
   uint32_t material = 0;
+  std::optional<glm::mat4> objectToWorldAtClose;  // motion blur, as for MeshInstance
 };
 
 // Infinite plane dot(normal, p) = distance, with a unit normal.
