@@ -57,9 +57,16 @@ void printTimings(const RenderStats& stats, const GpuScene& gpuScene) {
 
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene to a PNG (sRGB) or EXR (linear radiance) file");
+  cmd->add_option("-o,--output", o.output, "Output image: .png (tone-clamped sRGB) or .exr (linear, with variance)");
+  cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
+  addSceneFlags(*cmd, o);
+  return cmd;
+}
+
+void addSceneFlags(CLI::App& command, RenderOptions& o) {
+  CLI::App* cmd = &command;
   RenderSettings& s = o.settings;
   cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  cmd->add_option("-o,--output", o.output, "Output image: .png (tone-clamped sRGB) or .exr (linear, with variance)");
   cmd->add_option("--spp", s.samplesPerPixel, "Samples per pixel")->check(CLI::Range(1u, 1u << 20));
   cmd->add_option_function<uint32_t>("--width", [&](const uint32_t& w) { s.width = w; o.widthGiven = true; },
                                      "Image width in pixels (default 512)")
@@ -106,7 +113,6 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_flag("--validate", o.validate,
                 "Vulkan: run with the Khronos validation layer (with synchronization validation); OpenCL: build the "
                 "kernels with warnings as errors and check the queue counters; fail on any error");
-  cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
   addCameraFlags(*cmd, o.camera);
   cmd->add_option("--sky", o.sky, "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar");
   cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
@@ -115,27 +121,36 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--sky-sampling", s.skySampling,
                   "on: next event estimation samples the sky by luminance (default); off: only BSDF rays find it")
       ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
-  return cmd;
+}
+
+bool validationRequested(const RenderOptions& o) {
+  const char* validationEnv = std::getenv("WAVEPATH_VALIDATION");
+  return o.validate || (validationEnv != nullptr && std::string(validationEnv) == "1");
+}
+
+PreparedScene prepareScene(RenderOptions& o) {
+  PreparedScene p;
+  p.scene = loadScene(o.scene, o.sky.empty());
+  if (!o.sky.empty()) {
+    p.scene.sky = loadEnvironmentMap(o.sky);
+  }
+  p.scene.skyIntensity = o.skyIntensity;
+  p.scene.skyRotation = glm::radians(o.skyRotationDegrees);
+  resolveImageSize(o, p.scene);
+  p.gpuScene = packScene(bakeSingleUseMeshes(p.scene));
+  applyCameraFlags(o.camera, p.scene.camera, p.gpuScene);
+  return p;
 }
 
 int runRender(RenderOptions o) {
   auto wallStart = std::chrono::steady_clock::now();
-  const char* validationEnv = std::getenv("WAVEPATH_VALIDATION");
-  bool validate = o.validate || (validationEnv != nullptr && std::string(validationEnv) == "1");
+  bool validate = validationRequested(o);
   if (o.output.empty()) {
     o.output = std::filesystem::path(o.scene).stem().string() + ".png";
   }
   checkOutputPath(o.output);
 
-  Scene scene = loadScene(o.scene, o.sky.empty());
-  if (!o.sky.empty()) {
-    scene.sky = loadEnvironmentMap(o.sky);
-  }
-  scene.skyIntensity = o.skyIntensity;
-  scene.skyRotation = glm::radians(o.skyRotationDegrees);
-  resolveImageSize(o, scene);
-  GpuScene gpuScene = packScene(bakeSingleUseMeshes(scene));
-  applyCameraFlags(o.camera, scene.camera, gpuScene);
+  auto [scene, gpuScene] = prepareScene(o);
 
   BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);

@@ -1,0 +1,136 @@
+// `wavepath view` end to end, run by ctest under Xvfb (xvfb-run) on lavapipe with the
+// validation layer: a scripted run's screenshot against `wavepath render`, the window
+// capture, the OpenCL backend in the window, and the error without a window system.
+#include <gtest/gtest.h>
+
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "image/image_io.h"
+#include "support/run_wavepath.h"
+
+namespace wp::test {
+namespace {
+
+std::filesystem::path cornellBox() { return sourceDirectory() / "assets" / "cornell-box.gltf"; }
+
+// A scene, its size, samples and seed, as both commands take them.
+std::vector<std::string> sceneFlags(const std::string& backend) {
+  return {cornellBox().string(), "--width", "96", "--height", "96", "--spp", "6", "--seed", "7", "--backend", backend};
+}
+
+RunResult view(const std::string& backend, const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"view"};
+  for (const std::string& a : sceneFlags(backend)) args.push_back(a);
+  args.insert(args.end(), extra.begin(), extra.end());
+  RunResult r = runWavepath(args, {}, 300);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+  return r;
+}
+
+void render(const std::string& backend, const std::filesystem::path& out) {
+  std::vector<std::string> args = {"render"};
+  for (const std::string& a : sceneFlags(backend)) args.push_back(a);
+  args.insert(args.end(), {"-o", out.string()});
+  RunResult r = runWavepath(args, {}, 300);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+}
+
+struct Rgb8 {
+  int width = 0, height = 0;
+  std::vector<unsigned char> bytes;
+};
+
+Rgb8 readPng(const std::filesystem::path& path) {
+  Rgb8 image;
+  int channels = 0;
+  unsigned char* pixels = stbi_load(path.c_str(), &image.width, &image.height, &channels, 3);
+  EXPECT_NE(pixels, nullptr) << path;
+  if (pixels != nullptr) {
+    image.bytes.assign(pixels, pixels + size_t(image.width) * image.height * 3);
+    stbi_image_free(pixels);
+  }
+  return image;
+}
+
+// The viewer stops at --spp and traces the same paths (seeded by pixel, sample and seed) as
+// render, only split into smaller passes; the README promises bit-identical images across
+// pass splits, so the radiance and its variance must match exactly, not just statistically.
+void expectSameRadiance(const std::string& backend) {
+  std::filesystem::path dir = scratchDirectory("view-" + backend);
+  RunResult r = view(backend, {"--frames", "2", "--frame-budget", "5", "--screenshot", (dir / "view.exr").string()});
+  render(backend, dir / "render.exr");
+  RadianceImage a = readExr(dir / "view.exr"), b = readExr(dir / "render.exr");
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  ASSERT_EQ(a.mean.size(), b.mean.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < a.mean.size(); ++i) {
+    differing += a.mean[i] != b.mean[i] || a.variance[i] != b.variance[i];
+  }
+  EXPECT_EQ(differing, 0u) << "of " << a.mean.size() << " pixels";
+  // The scripted run reports its frames and speed at exit.
+  EXPECT_NE(r.out.find("view: "), std::string::npos) << r.out;
+}
+
+TEST(View, ScriptedRunMatchesRenderOnVulkan) { expectSameRadiance("vulkan"); }
+
+TEST(View, ScriptedRunMatchesRenderOnOpenCl) { expectSameRadiance("opencl"); }
+
+TEST(View, DisplayScreenshotEqualsRendersPng) {
+  std::filesystem::path dir = scratchDirectory("view-png");
+  view("vulkan", {"--frames", "1", "--screenshot", (dir / "view.png").string(), "--tonemap", "aces"});
+  std::vector<std::string> args = {"render"};
+  for (const std::string& a : sceneFlags("vulkan")) args.push_back(a);
+  args.insert(args.end(), {"-o", (dir / "render.png").string(), "--tonemap", "aces"});
+  ASSERT_EQ(runWavepath(args).exitCode, 0);
+  Rgb8 a = readPng(dir / "view.png"), b = readPng(dir / "render.png");
+  EXPECT_EQ(a.width, 96);
+  EXPECT_EQ(a.height, 96);
+  EXPECT_TRUE(a.bytes == b.bytes);  // same radiance (above) through the same packDisplay
+}
+
+// What the window shows: without the panel exactly the display image (the copy into the
+// swapchain keeps every byte, BGRA or RGBA), with it the panel covers part of it.
+TEST(View, WindowCaptureShowsTheImageAndThePanel) {
+  std::filesystem::path dir = scratchDirectory("view-capture");
+  view("vulkan", {"--frames", "2", "--screenshot", (dir / "image.png").string(), "--window-capture",
+                  (dir / "bare.png").string(), "--hide-panel"});
+  Rgb8 image = readPng(dir / "image.png"), bare = readPng(dir / "bare.png");
+  EXPECT_EQ(bare.width, 96);
+  EXPECT_EQ(bare.height, 96);
+  EXPECT_TRUE(bare.bytes == image.bytes);
+
+  view("vulkan", {"--frames", "2", "--window-capture", (dir / "panel.png").string()});
+  Rgb8 panel = readPng(dir / "panel.png");
+  ASSERT_EQ(panel.bytes.size(), image.bytes.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < panel.bytes.size(); i += 3) {
+    differing += std::memcmp(&panel.bytes[i], &image.bytes[i], 3) != 0;
+  }
+  // The panel's title bar alone spans the window's width (96 px) and ~19 px height.
+  EXPECT_GT(differing, 96u * 10u);
+}
+
+TEST(View, WithoutAWindowSystemPointsToRender) {
+  std::vector<std::string> args = {"view", cornellBox().string(), "--frames", "1"};
+  RunResult r = runWavepath(args, {"DISPLAY="}, 60);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("wavepath: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("wavepath render"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST(View, ScreenshotNeedsAScriptedRun) {
+  RunResult r = runWavepath({"view", cornellBox().string(), "--screenshot", "x.png"}, {}, 60);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace wp::test
