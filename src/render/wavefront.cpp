@@ -88,9 +88,9 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
   ++stats.passes;
 }
 
-void WavefrontRenderer::runNextPass(uint64_t end, RenderStats& stats) {
+void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
   const uint64_t pixels = params_.image.z;
-  uint32_t count = uint32_t(std::min<uint64_t>(params_.counts.w, end - pathsDone_));
+  uint32_t count = uint32_t(std::min<uint64_t>({params_.counts.w, maxCount, end - pathsDone_}));
   runPass(uint32_t(pathsDone_ % pixels), uint32_t(pathsDone_ / pixels), count, stats);
   pathsDone_ += count;
   stats.samples += count;
@@ -102,7 +102,7 @@ RenderStats WavefrontRenderer::render(const std::function<void(double)>& progres
   const uint64_t total = uint64_t(params_.image.z) * settings_.samplesPerPixel;
   const uint64_t end = pathsDone_ + total;
   while (pathsDone_ < end) {
-    runNextPass(end, stats);
+    runNextPass(end, params_.counts.w, stats);
     if (progress) {
       progress(double(stats.samples) / double(total));
     }
@@ -115,9 +115,20 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
+  // The first pass, with nothing measured yet, is small: a whole pass of a CPU device could
+  // take seconds. Later passes fill what is left of the budget; the floor keeps the fixed
+  // cost per pass (four dispatches per bounce) from dominating.
+  constexpr uint64_t kFirstPass = 4096, kSmallestPass = 1024;
   while (pathsDone_ < end && (stats.passes == 0 || stats.seconds < budgetSeconds)) {
-    runNextPass(end, stats);
+    uint64_t count = kFirstPass;
+    if (secondsPerPath_ > 0.0) {
+      count = std::max(kSmallestPass, uint64_t((budgetSeconds - stats.seconds) / secondsPerPath_));
+    }
+    uint64_t before = pathsDone_;
+    double passStart = stats.seconds;
+    runNextPass(end, count, stats);
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    secondsPerPath_ = (stats.seconds - passStart) / double(pathsDone_ - before);
   }
   return stats;
 }

@@ -39,8 +39,10 @@ public:
 
   // Progressive rendering (the viewer): runs whole passes, continuing where the last one
   // stopped, until `budgetSeconds` is spent (at least one pass) or every pixel has
-  // `samplesPerPixel` samples. Paths follow the same order as render()'s, so a progressive
-  // render that reaches N samples equals render() of N samples bit for bit.
+  // `samplesPerPixel` samples. Passes are sized from the time earlier passes took per path
+  // so they end near the budget (at most the paths in flight). Paths follow the same order
+  // as render()'s, so a progressive render that reaches N samples equals render() of N
+  // samples bit for bit.
   RenderStats renderFor(double budgetSeconds, uint32_t samplesPerPixel);
   // Replaces the settings and the scene's camera and sky (makeRenderParams) and clears the
   // accumulation. Reuploads the scene when `reloadScene` (a changed GpuScene).
@@ -53,8 +55,8 @@ public:
 
 private:
   void runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats);
-  // Runs the next pass of at most the paths in flight, stopping at path index `end`.
-  void runNextPass(uint64_t end, RenderStats& stats);
+  // Runs the next pass of at most `maxCount` paths, stopping at path index `end`.
+  void runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats);
   void configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
   Backend& backend_;
@@ -63,6 +65,8 @@ private:
   // Paths traced since the last configure, in render order: path k is sample k / pixels of
   // pixel k % pixels.
   uint64_t pathsDone_ = 0;
+  // Measured seconds per path of the last progressive pass; 0 before the first.
+  double secondsPerPath_ = 0.0;
 };
 
 }  // namespace wp
