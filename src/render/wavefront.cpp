@@ -116,13 +116,19 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   auto start = std::chrono::steady_clock::now();
   const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
   // The first pass, with nothing measured yet, is small: a whole pass of a CPU device could
-  // take seconds. Later passes fill what is left of the budget; the floor keeps the fixed
-  // cost per pass (four dispatches per bounce) from dominating.
-  constexpr uint64_t kFirstPass = 4096, kSmallestPass = 1024;
-  while (pathsDone_ < end && (stats.passes == 0 || stats.seconds < budgetSeconds)) {
+  // take seconds. Later passes fill what is left of the budget at the measured rate, but
+  // the frame ends rather than run a pass under a quarter of the budget: a small pass pays
+  // the fixed cost per pass (four dispatches per bounce) on few paths, and the rate it
+  // measured would shrink the next frame's passes too.
+  constexpr uint64_t kFirstPass = 4096;
+  while (pathsDone_ < end) {
+    double left = budgetSeconds - stats.seconds;
     uint64_t count = kFirstPass;
     if (secondsPerPath_ > 0.0) {
-      count = std::max(kSmallestPass, uint64_t((budgetSeconds - stats.seconds) / secondsPerPath_));
+      if (stats.passes > 0 && left < 0.25 * budgetSeconds) break;
+      count = std::max<uint64_t>(1, uint64_t(left / secondsPerPath_));
+    } else if (stats.passes > 0 && left <= 0.0) {
+      break;
     }
     uint64_t before = pathsDone_;
     double passStart = stats.seconds;
