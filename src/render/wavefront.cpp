@@ -115,18 +115,19 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
-  // The first pass, with nothing measured yet, is small: a whole pass of a CPU device could
-  // take seconds. Later passes fill what is left of the budget at the measured rate, but
-  // the frame ends rather than run a pass under a quarter of the budget: a small pass pays
-  // the fixed cost per pass (four dispatches per bounce) on few paths, and the rate it
-  // measured would shrink the next frame's passes too.
-  constexpr uint64_t kFirstPass = 4096;
+  // Passes fill what is left of the budget at the measured rate, but never fall under
+  // kSmallestPass paths, and the frame ends rather than run a pass under a quarter of the
+  // budget: a small pass pays the fixed cost per pass (four dispatches per bounce) on few
+  // paths, and the rate it measured would shrink the next passes in turn. The first pass,
+  // with nothing measured yet, is the smallest: a whole pass of a CPU device could take
+  // seconds.
+  constexpr uint64_t kSmallestPass = 4096;
   while (pathsDone_ < end) {
     double left = budgetSeconds - stats.seconds;
-    uint64_t count = kFirstPass;
+    uint64_t count = kSmallestPass;
     if (secondsPerPath_ > 0.0) {
       if (stats.passes > 0 && left < 0.25 * budgetSeconds) break;
-      count = std::max<uint64_t>(1, uint64_t(left / secondsPerPath_));
+      count = std::max(kSmallestPass, uint64_t(left / secondsPerPath_));
     } else if (stats.passes > 0 && left <= 0.0) {
       break;
     }
