@@ -6,7 +6,10 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -115,6 +118,27 @@ TEST(View, WindowCaptureShowsTheImageAndThePanel) {
   }
   // The panel's title bar alone spans the window's width (96 px) and ~19 px height.
   EXPECT_GT(differing, 96u * 10u);
+}
+
+// The window is resized from outside (as a user dragging its border) while a scripted run
+// goes on: the image follows the window, and the capture has the window's new size.
+TEST(View, ImageFollowsAResizedWindow) {
+  std::filesystem::path dir = scratchDirectory("view-resize");
+  std::filesystem::path image = dir / "image.png", window = dir / "window.png";
+  std::string command = std::string("WAVEPATH_VALIDATION=1 ") + WAVEPATH_EXE + " view '" + cornellBox().string() +
+                        "' --width 96 --height 96 --frames 300 --frame-budget 5 --screenshot '" + image.string() +
+                        "' --window-capture '" + window.string() + "' 2>'" + (dir / "err.txt").string() +
+                        "' & pid=$!; for i in $(seq 40); do sleep 0.25; " X_RESIZE_WINDOW
+                        " 'wavepath view' 160 120 && break; done; wait $pid";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;  // the viewer's exit code (wait's)
+  Rgb8 a = readPng(image), b = readPng(window);
+  EXPECT_EQ(a.width, 160);
+  EXPECT_EQ(a.height, 120);
+  EXPECT_EQ(b.width, 160);
+  EXPECT_EQ(b.height, 120);
+  std::ifstream err(dir / "err.txt");
+  std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("validation"), std::string::npos) << text;
 }
 
 TEST(View, WithoutAWindowSystemPointsToRender) {
