@@ -150,10 +150,15 @@ TEST(View, WithoutAWindowSystemPointsToRender) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
-TEST(View, ScreenshotNeedsAScriptedRun) {
+TEST(View, ScreenshotNeedsAScriptedRunAndTheCaptureAPng) {
   RunResult r = runWavepath({"view", cornellBox().string(), "--screenshot", "x.png"}, {}, 60);
   EXPECT_EQ(r.exitCode, 1) << r.err;
   EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+  std::filesystem::path capture = scratchDirectory("view-bad-capture") / "window.exr";
+  r = runWavepath({"view", cornellBox().string(), "--frames", "1", "--window-capture", capture.string()}, {}, 60);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_NE(r.err.find("must end in .png"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(capture));
 }
 
 }  // namespace
