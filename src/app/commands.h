@@ -56,7 +56,7 @@ struct ViewOptions {
   uint32_t frames = 0;         // scripted: run this many frames (and reach --spp), then exit
   std::string screenshot;      // scripted: write the image here at exit (.png display, .exr radiance)
   std::string windowCapture;   // scripted: write the whole window, panel included, as PNG at exit
-  float frameBudgetMs = 33.0f;  // path tracing time per displayed frame
+  float frameBudgetMs = 33.0f;  // time per displayed frame (path tracing gets what the rest leaves)
   bool hidePanel = false;
 };
 

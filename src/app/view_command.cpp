@@ -20,7 +20,9 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& v) {
   cmd->add_option("--screenshot", v.screenshot,
                   "Scripted run: at exit write the image (.png: as displayed; .exr: radiance with variance)");
   cmd->add_option("--window-capture", v.windowCapture, "Scripted run: at exit write the whole window, panel included (.png)");
-  cmd->add_option("--frame-budget", v.frameBudgetMs, "Path tracing time per displayed frame in ms (at least one pass)")
+  cmd->add_option("--frame-budget", v.frameBudgetMs,
+                  "Time per displayed frame in ms; path tracing gets what readback and display leave (at least a "
+                  "quarter, and one pass)")
       ->check(CLI::Range(1.0f, 10000.0f));
   cmd->add_flag("--hide-panel", v.hidePanel, "Start with the settings panel hidden (F1 toggles it)");
   return cmd;

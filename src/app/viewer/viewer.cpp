@@ -92,7 +92,12 @@ public:
       auto now = Clock::now();
       double seconds = std::chrono::duration<double>(now - last).count();
       last = now;
-      if (frames_ > 0) frameMs_.push_back(seconds * 1e3);
+      if (frames_ > 0) {
+        frameMs_.push_back(seconds * 1e3);
+        // What the frame spent besides path tracing (readback, tone curve, panel, present),
+        // smoothed over a few frames since readbacks come only every few.
+        overheadSeconds_ += 0.2 * (std::max(seconds - last_.seconds, 0.0) - overheadSeconds_);
+      }
       if (frame(seconds)) break;
     }
     report();
@@ -151,7 +156,10 @@ private:
     changed |= w > 0 && h > 0 && (w != settings_.width || h != settings_.height);
     if (changed) restart(false);
 
-    last_ = renderer_.renderFor(v_.frameBudgetMs * 1e-3, sampleTarget());
+    // The budget is the whole frame's: path tracing gets what the rest leaves, but at least
+    // a quarter of it so the image still refines when the rest alone exceeds the budget.
+    double budget = v_.frameBudgetMs * 1e-3;
+    last_ = renderer_.renderFor(std::max(budget - overheadSeconds_, 0.25 * budget), sampleTarget());
     totals_.samples += last_.samples;
     totals_.extensionRays += last_.extensionRays;
     totals_.shadowRays += last_.shadowRays;
@@ -292,6 +300,7 @@ private:
   RenderStats last_;
   RenderStats totals_;
   std::vector<double> frameMs_;
+  double overheadSeconds_ = 0.0;
   // Where the time goes, for the exit report: per frame, and per readback and tone mapping.
   std::vector<double> renderMs_, readbackMs_, toneMs_, presentMs_;
   uint32_t frames_ = 0;
