@@ -30,7 +30,7 @@ bool drawSettingsPanel(const PanelInfo& info, PanelControls& c) {
   }
   ImGui::Text("%.3f M samples/s, %.2f Mrays/s", info.samplesPerSecond * 1e-6, info.raysPerSecond * 1e-6);
   ImGui::Text("frame %.1f ms, %u passes", info.frameMs, info.passesPerFrame);
-  if (ImGui::TreeNode("GPU ms per stage (last frame)")) {
+  if (ImGui::TreeNodeEx("GPU ms per stage (last frame)", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (int k = 0; k < kKernelCount; ++k) {
       ImGui::Text("%-10s %7.2f", kernelName(Kernel(k)), info.stageMs[k]);
     }
