@@ -120,25 +120,53 @@ TEST(View, WindowCaptureShowsTheImageAndThePanel) {
   EXPECT_GT(differing, 96u * 10u);
 }
 
+// Runs `wavepath view` with `flags` in the background and, once its window is mapped, acts
+// on it as a user would (x_window_input `action`), then waits for the scripted run to end.
+// Returns the viewer's stderr; fails the test on a non-zero exit.
+std::string viewWithWindowInput(const std::vector<std::string>& flags, const std::string& action,
+                                const std::filesystem::path& dir) {
+  std::string command = std::string("WAVEPATH_VALIDATION=1 ") + WAVEPATH_EXE + " view";
+  for (const std::string& f : flags) command += " '" + f + "'";
+  command += " 2>'" + (dir / "err.txt").string() + "' & pid=$!; for i in $(seq 40); do sleep 0.25; " X_WINDOW_INPUT
+             " " + action + " && break; done; wait $pid";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;  // the viewer's exit code (wait's)
+  std::ifstream err(dir / "err.txt");
+  return std::string((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+}
+
 // The window is resized from outside (as a user dragging its border) while a scripted run
 // goes on: the image follows the window, and the capture has the window's new size.
 TEST(View, ImageFollowsAResizedWindow) {
   std::filesystem::path dir = scratchDirectory("view-resize");
   std::filesystem::path image = dir / "image.png", window = dir / "window.png";
-  std::string command = std::string("WAVEPATH_VALIDATION=1 ") + WAVEPATH_EXE + " view '" + cornellBox().string() +
-                        "' --width 96 --height 96 --frames 300 --frame-budget 5 --screenshot '" + image.string() +
-                        "' --window-capture '" + window.string() + "' 2>'" + (dir / "err.txt").string() +
-                        "' & pid=$!; for i in $(seq 40); do sleep 0.25; " X_RESIZE_WINDOW
-                        " 'wavepath view' 160 120 && break; done; wait $pid";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;  // the viewer's exit code (wait's)
+  std::string err = viewWithWindowInput({cornellBox().string(), "--width", "96", "--height", "96", "--frames", "300",
+                                         "--frame-budget", "5", "--screenshot", image.string(), "--window-capture",
+                                         window.string()},
+                                        "resize 'wavepath view' 160 120", dir);
   Rgb8 a = readPng(image), b = readPng(window);
   EXPECT_EQ(a.width, 160);
   EXPECT_EQ(a.height, 120);
   EXPECT_EQ(b.width, 160);
   EXPECT_EQ(b.height, 120);
-  std::ifstream err(dir / "err.txt");
-  std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(text.find("validation"), std::string::npos) << text;
+  EXPECT_EQ(err.find("validation"), std::string::npos) << err;
+}
+
+// W held in the real window moves the camera: the final image (the target spp of the moved
+// view, since the move restarts the accumulation) is no longer the scene camera's render.
+// Unmoved, the two are equal bit for bit (ScriptedRunMatchesRender*), so any differing
+// pixel is the move; a forward move of a few tenths of the box changes most of them.
+TEST(View, HeldKeyInTheWindowMovesTheCamera) {
+  std::filesystem::path dir = scratchDirectory("view-key");
+  std::vector<std::string> flags = sceneFlags("vulkan");
+  flags.insert(flags.end(), {"--frames", "100", "--frame-budget", "20", "--screenshot", (dir / "view.exr").string()});
+  std::string err = viewWithWindowInput(flags, "key 'wavepath view' w 600", dir);
+  EXPECT_EQ(err.find("validation"), std::string::npos) << err;
+  render("vulkan", dir / "render.exr");
+  RadianceImage moved = readExr(dir / "view.exr"), home = readExr(dir / "render.exr");
+  ASSERT_EQ(moved.mean.size(), home.mean.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < moved.mean.size(); ++i) differing += moved.mean[i] != home.mean[i];
+  EXPECT_GT(differing, moved.mean.size() / 2);
 }
 
 TEST(View, WithoutAWindowSystemPointsToRender) {
