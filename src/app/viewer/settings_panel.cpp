@@ -7,13 +7,6 @@
 #include <imgui.h>
 
 namespace wp {
-namespace {
-
-bool comboOf(const char* label, int& index, const char* const* names, int count) {
-  return ImGui::Combo(label, &index, names, count);
-}
-
-}  // namespace
 
 bool drawSettingsPanel(const PanelInfo& info, PanelControls& c) {
   bool restart = false;
@@ -46,7 +39,7 @@ bool drawSettingsPanel(const PanelInfo& info, PanelControls& c) {
   }
   static const char* const modes[] = {"MIS", "NEE only", "BSDF only"};
   int mode = int(s.mode);
-  if (comboOf("integrator", mode, modes, 3)) {
+  if (ImGui::Combo("integrator", &mode, modes, 3)) {
     s.mode = IntegratorMode(mode);
     restart = true;
   }
@@ -69,7 +62,7 @@ bool drawSettingsPanel(const PanelInfo& info, PanelControls& c) {
   ImGui::Checkbox("auto exposure", &c.display->autoExposure);
   static const char* const curves[] = {"clamp", "reinhard", "filmic", "aces"};
   int curve = int(std::find(curves, curves + 4, c.display->toneMapper) - curves) % 4;
-  if (comboOf("tone curve", curve, curves, 4)) {
+  if (ImGui::Combo("tone curve", &curve, curves, 4)) {
     c.display->toneMapper = curves[curve];
   }
 

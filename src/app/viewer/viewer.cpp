@@ -95,8 +95,11 @@ public:
       if (frames_ > 0) {
         frameMs_.push_back(seconds * 1e3);
         // What the frame spent besides path tracing (readback, tone curve, panel, present),
-        // smoothed over a few frames since readbacks come only every few.
-        overheadSeconds_ += 0.2 * (std::max(seconds - last_.seconds, 0.0) - overheadSeconds_);
+        // smoothed over a few frames since readbacks come only every few; converged frames
+        // (no pass, then a wait for events) say nothing about it.
+        if (last_.passes > 0) {
+          overheadSeconds_ += 0.2 * (std::max(seconds - last_.seconds, 0.0) - overheadSeconds_);
+        }
       }
       if (frame(seconds)) break;
     }
@@ -146,7 +149,30 @@ private:
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    FrameInput input = renderInputs(seconds);
+    FrameInput input = takeInput(seconds);
+    bool changed = applyInput(input);
+    trace();
+    bool done = v_.frames > 0 && frames_ >= v_.frames && renderer_.samplesPerPixelDone() >= targetForScript();
+    refreshImage(changed || done || input.screenshot || renderer_.samplesPerPixelDone() >= sampleTarget());
+    DisplaySettings display = updatePixels();
+    ImGui::Render();
+    auto presentStart = Clock::now();
+    std::vector<uint32_t> capture;
+    uint32_t captureW = 0, captureH = 0;
+    bool capturing = done && !v_.windowCapture.empty();
+    presenter_.present(pixels_, image_.width, image_.height, capturing ? &capture : nullptr, &captureW, &captureH);
+    presentMs_.push_back(std::chrono::duration<double, std::milli>(Clock::now() - presentStart).count());
+    if (input.screenshot) saveScreenshot(display);
+    if (done) finish(display, capture, captureW, captureH);
+    if (last_.passes == 0 && v_.frames == 0) {
+      glfwWaitEventsTimeout(0.1);  // converged: sleep until the user does something
+    }
+    return done;
+  }
+
+  // Applies the panel, the camera input and the window size; returns whether the view
+  // changed (and the accumulation restarted).
+  bool applyInput(const FrameInput& input) {
     bool changed = showPanel_ && drawSettingsPanel(panelInfo(), controls_);
     if (changed) checkOptics();
     float pivot = input.camera.toggleOrbit ? autofocusDistance(scene_.camera, gpuScene_) : 0.0f;
@@ -155,18 +181,26 @@ private:
     window_.framebufferSize(w, h);
     changed |= w > 0 && h > 0 && (w != settings_.width || h != settings_.height);
     if (changed) restart(false);
+    return changed;
+  }
 
-    // The budget is the whole frame's: path tracing gets what the rest leaves, but at least
-    // a quarter of it so the image still refines when the rest alone exceeds the budget.
+  // Path traces for this frame's share of the budget. The budget is the whole frame's: path
+  // tracing gets what the rest leaves, but at least a quarter of it so the image still
+  // refines when the rest alone exceeds the budget.
+  void trace() {
     double budget = v_.frameBudgetMs * 1e-3;
     last_ = renderer_.renderFor(std::max(budget - overheadSeconds_, 0.25 * budget), sampleTarget());
     totals_.samples += last_.samples;
     totals_.extensionRays += last_.extensionRays;
     totals_.shadowRays += last_.shadowRays;
     totals_.seconds += last_.seconds;
+    renderMs_.push_back(last_.seconds * 1e3);
     ++frames_;
-    bool done = v_.frames > 0 && frames_ >= v_.frames && renderer_.samplesPerPixelDone() >= targetForScript();
-    refreshImage(changed || done || input.screenshot || renderer_.samplesPerPixelDone() >= sampleTarget());
+  }
+
+  // Remakes the shown pixels when the image or the display settings changed; returns the
+  // display settings in use.
+  DisplaySettings updatePixels() {
     DisplaySettings display = displaySettings(v_.render.camera, optics_, image_);
     display.exposure *= std::exp2(controls_.exposureStops);
     if (imageFresh_ || !sameDisplay(display, shownDisplay_)) {
@@ -176,21 +210,7 @@ private:
       shownDisplay_ = display;
       imageFresh_ = false;
     }
-    ImGui::Render();
-    auto presentStart = Clock::now();
-    std::vector<uint32_t> capture;
-    uint32_t captureW = 0, captureH = 0;
-    bool capturing = done && !v_.windowCapture.empty();
-    presenter_.present(pixels_, image_.width, image_.height, capturing ? &capture : nullptr, &captureW, &captureH);
-
-    renderMs_.push_back(last_.seconds * 1e3);
-    presentMs_.push_back(std::chrono::duration<double, std::milli>(Clock::now() - presentStart).count());
-    if (input.screenshot) saveScreenshot(display);
-    if (done) finish(display, capture, captureW, captureH);
-    if (last_.passes == 0 && v_.frames == 0) {
-      glfwWaitEventsTimeout(0.1);  // converged: sleep until the user does something
-    }
-    return done;
+    return display;
   }
 
   // Reads the image back when passes ran since the last time and either `now` or enough
@@ -218,7 +238,7 @@ private:
     return a.exposure == b.exposure && a.toneMapper == b.toneMapper && a.transfer == b.transfer && a.gamma == b.gamma;
   }
 
-  FrameInput renderInputs(double seconds) {
+  FrameInput takeInput(double seconds) {
     FrameInput input = trackerOf(window_.handle).takeFrame(seconds);
     if (input.togglePanel) showPanel_ = !showPanel_;
     if (input.camera.reset) {
