@@ -92,7 +92,7 @@ struct TangentFrame {
 
 TangentFrame frameAt(const GpuScene& g, const gpu::Hit& hit, glm::vec3 position) {
   gpu::SurfaceHit s = gpu::surfaceAt(g.triangles.data(), g.instances.data(), g.planes.data(),
-                                     g.triangleShading.data(), hit.instance, hit.primitive, position);
+                                     g.triangleShading.data(), hit.instance, hit.primitive, position, 0.0f);
   glm::vec3 n = s.shadingNormal;
   glm::vec3 t = glm::normalize(s.tangent - n * glm::dot(n, s.tangent));
   glm::vec3 b = s.bitangent - n * glm::dot(n, s.bitangent) - t * glm::dot(t, s.bitangent);
@@ -134,7 +134,7 @@ TEST(InstanceBaking, TransformsTangentsAndFlipsTheSignWhenMirrored) {
     glm::vec3 direction = glm::normalize(glm::vec3(u(rng), -1.5f, u(rng)));
     auto trace = [&](const GpuScene& g) {
       return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot,
-                               0u, origin, direction, WP_FLT_MAX);
+                               0u, origin, direction, WP_FLT_MAX, 0.0f);
     };
     gpu::Hit a = trace(instanced);
     gpu::Hit b = trace(baked);

@@ -5,7 +5,9 @@
 #include <string>
 
 #include "app/camera_options.h"
+#include "bvh/gpu_scene.h"
 #include "render/settings.h"
+#include "scene/scene.h"
 
 namespace CLI {
 class App;
@@ -37,6 +39,37 @@ struct RenderOptions {
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& options);
 // Renders as the options say; throws wp::Error on bad input. Returns the exit code.
 int runRender(RenderOptions options);
+
+// The scene argument and every flag `render` and `view` share (settings, backend, camera,
+// sky), added to `command`.
+void addSceneFlags(CLI::App& command, RenderOptions& options);
+// --validate or WAVEPATH_VALIDATION=1.
+bool validationRequested(const RenderOptions& options);
+
+struct PreparedScene {
+  Scene scene;
+  GpuScene gpuScene;
+};
+// Loads the scene and sky and fills in the image size the flags left out; throws wp::Error
+// on bad input.
+Scene loadSceneWithSky(RenderOptions& options);
+// loadSceneWithSky, posed at --time when given, packed, with the camera flags applied.
+PreparedScene prepareScene(RenderOptions& options);
+
+struct ViewOptions {
+  RenderOptions render;
+  bool sampleLimit = false;    // --spp given: stop accumulating there
+  uint32_t frames = 0;         // scripted: run this many frames (and reach --spp), then exit
+  std::string screenshot;      // scripted: write the image here at exit (.png display, .exr radiance)
+  std::string windowCapture;   // scripted: write the whole window, panel included, as PNG at exit
+  float frameBudgetMs = 33.0f;  // time per displayed frame (path tracing gets what the rest leaves)
+  bool hidePanel = false;
+};
+
+// Adds `view` to the app.
+CLI::App* addViewCommand(CLI::App& app, ViewOptions& options);
+// Opens the viewer window; throws wp::Error when it cannot. Returns the exit code.
+int runView(ViewOptions options);
 
 CLI::App* addDevicesCommand(CLI::App& app);
 int runDevices();

@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   wp::RenderOptions renderOptions;
   CLI::App* render = wp::addRenderCommand(app, renderOptions);
+  wp::ViewOptions viewOptions;
+  CLI::App* view = wp::addViewCommand(app, viewOptions);
   CLI::App* devices = wp::addDevicesCommand(app);
   try {
     app.parse(argc, argv);
@@ -26,6 +28,10 @@ int main(int argc, char** argv) {
   try {
     if (render->parsed()) {
       return wp::runRender(renderOptions);
+    }
+    if (view->parsed()) {
+      viewOptions.sampleLimit = view->count("--spp") > 0;
+      return wp::runView(viewOptions);
     }
     if (devices->parsed()) {
       return wp::runDevices();

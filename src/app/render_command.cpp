@@ -139,9 +139,31 @@ void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& b
 
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene to a PNG (sRGB) or EXR (linear radiance) file");
+  cmd->add_option("-o,--output", o.output, "Output image: .png (tone-clamped sRGB) or .exr (linear, with variance)");
+  cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory, BVH and scene-update figures");
+  addSceneFlags(*cmd, o);
+  cmd->add_option("--frames", o.frames,
+                  "Render frames A..B (inclusive) of the animations, frame n at n/fps seconds, to the -o pattern, "
+                  "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              parseFrameRange(text);
+            } catch (const Error& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "A..B"))
+      ->excludes(cmd->get_option("--time"));
+  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(finiteNumber(true));
+  return cmd;
+}
+
+void addSceneFlags(CLI::App& command, RenderOptions& o) {
+  CLI::App* cmd = &command;
   RenderSettings& s = o.settings;
   cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  cmd->add_option("-o,--output", o.output, "Output image: .png (tone-clamped sRGB) or .exr (linear, with variance)");
   cmd->add_option("--spp", s.samplesPerPixel, "Samples per pixel")->check(CLI::Range(1u, 1u << 20));
   cmd->add_option_function<uint32_t>("--width", [&](const uint32_t& w) { s.width = w; o.widthGiven = true; },
                                      "Image width in pixels (default 512)")
@@ -188,26 +210,9 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_flag("--validate", o.validate,
                 "Vulkan: run with the Khronos validation layer (with synchronization validation); OpenCL: build the "
                 "kernels with warnings as errors and check the queue counters; fail on any error");
-  cmd->add_flag("--timings", o.timings, "Print GPU time per stage, peak memory and BVH figures");
   addCameraFlags(*cmd, o.camera);
-  CLI::Option* time = cmd->add_option("--time", o.time,
-                                      "Render the scene's animations at this time, in seconds (default: the rest pose)")
-                           ->check(finiteNumber(false));
-  cmd->add_option("--frames", o.frames,
-                  "Render frames A..B (inclusive) of the animations, frame n at n/fps seconds, to the -o pattern, "
-                  "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            try {
-              parseFrameRange(text);
-            } catch (const Error& e) {
-              return e.what();
-            }
-            return "";
-          },
-          "A..B"))
-      ->excludes(time);
-  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(finiteNumber(true));
+  cmd->add_option("--time", o.time, "Pose the scene's animations at this time, in seconds (default: the rest pose)")
+      ->check(finiteNumber(false));
   cmd->add_option("--sky", o.sky, "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar");
   cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
   cmd->add_option("--sky-rotation", o.skyRotationDegrees, "Rotation of the sky about +y, in degrees");
@@ -215,18 +220,14 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--sky-sampling", s.skySampling,
                   "on: next event estimation samples the sky by luminance (default); off: only BSDF rays find it")
       ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
-  return cmd;
 }
 
-int runRender(RenderOptions o) {
+bool validationRequested(const RenderOptions& o) {
   const char* validationEnv = std::getenv("WAVEPATH_VALIDATION");
-  bool validate = o.validate || (validationEnv != nullptr && std::string(validationEnv) == "1");
-  if (o.output.empty()) {
-    o.output = std::filesystem::path(o.scene).stem().string() + (o.frames.empty() ? ".png" : "_####.png");
-  }
-  const FrameRange frames = framesToRender(o);
-  checkOutputPath(framePath(o.output, frames.first));
+  return o.validate || (validationEnv != nullptr && std::string(validationEnv) == "1");
+}
 
+Scene loadSceneWithSky(RenderOptions& o) {
   Scene scene = loadScene(o.scene, o.sky.empty());
   if (!o.sky.empty()) {
     scene.sky = loadEnvironmentMap(o.sky);
@@ -234,6 +235,29 @@ int runRender(RenderOptions o) {
   scene.skyIntensity = o.skyIntensity;
   scene.skyRotation = glm::radians(o.skyRotationDegrees);
   resolveImageSize(o, scene);
+  return scene;
+}
+
+PreparedScene prepareScene(RenderOptions& o) {
+  PreparedScene p;
+  p.scene = loadSceneWithSky(o);
+  if (o.time) {
+    p.scene = poseScene(p.scene, *o.time);
+  }
+  p.gpuScene = packScene(bakeSingleUseMeshes(p.scene));
+  applyCameraFlags(o.camera, p.scene.camera, p.gpuScene);
+  return p;
+}
+
+int runRender(RenderOptions o) {
+  bool validate = validationRequested(o);
+  if (o.output.empty()) {
+    o.output = std::filesystem::path(o.scene).stem().string() + (o.frames.empty() ? ".png" : "_####.png");
+  }
+  const FrameRange frames = framesToRender(o);
+  checkOutputPath(framePath(o.output, frames.first));
+
+  const Scene scene = loadSceneWithSky(o);
   if (!o.frames.empty() && !scene.animation) {
     note(o.scene + " has no animation: every frame is the same image");
   } else if (!o.frames.empty() && frames.last / o.fps > scene.animation->duration) {

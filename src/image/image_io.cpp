@@ -94,18 +94,17 @@ void checkImageShape(const fs::path& path, const RadianceImage& image) {
     failWrite(path, "image is too large for the PNG and EXR writers; render fewer pixels");
 }
 
-std::vector<unsigned char> encodePng(const RadianceImage& image, const DisplaySettings& d) {
-  std::vector<unsigned char> rgb(size_t(image.width) * image.height * 3);
-  for (size_t i = 0; i < image.mean.size(); ++i) {
-    uint32_t packed = gpu::packDisplay(image.mean[i], d.exposure, d.toneMapper, d.transfer, d.gamma);
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = static_cast<unsigned char>(packed >> (8 * c));
+std::vector<unsigned char> encodePng(uint32_t width, uint32_t height, const std::vector<uint32_t>& pixels) {
+  std::vector<unsigned char> rgb(size_t(width) * height * 3);
+  for (size_t i = 0; i < rgb.size() / 3; ++i) {
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = static_cast<unsigned char>(pixels[i] >> (8 * c));
   }
   std::vector<unsigned char> png;
   auto append = [](void* context, void* data, int size) {
     auto* out = static_cast<std::vector<unsigned char>*>(context);
     out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
   };
-  int w = int(image.width), h = int(image.height);
+  int w = int(width), h = int(height);
   if (!stbi_write_png_to_func(append, &png, w, h, 3, rgb.data(), w * 3)) png.clear();
   return png;
 }
@@ -206,12 +205,27 @@ float autoExposure(const RadianceImage& image) {
   return gpu::autoExposureScale(float(sum / double(std::max<size_t>(image.mean.size(), 1))));
 }
 
+std::vector<uint32_t> displayPixels(const RadianceImage& image, const DisplaySettings& d) {
+  std::vector<uint32_t> pixels(image.mean.size());
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    pixels[i] = gpu::packDisplay(image.mean[i], d.exposure, d.toneMapper, d.transfer, d.gamma);
+  }
+  return pixels;
+}
+
+void writePng(const fs::path& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& pixels) {
+  checkOutputPath(path);
+  std::vector<unsigned char> bytes = encodePng(width, height, pixels);
+  if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); capture a smaller window");
+  writeFileAtomically(path, bytes);
+}
+
 void writeImage(const fs::path& path, const RadianceImage& image, const DisplaySettings& display) {
   checkOutputPath(path);
   checkImageShape(path, image);
   std::vector<unsigned char> bytes;
   if (lowerExtension(path) == ".png") {
-    bytes = encodePng(image, display);
+    bytes = encodePng(image.width, image.height, displayPixels(image, display));
     if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); render a smaller image");
   } else {
     bytes = encodeExr(path, image);

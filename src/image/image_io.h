@@ -29,6 +29,14 @@ struct DisplaySettings {
 // The exposure that maps the image's log-average luminance to middle grey (Reinhard 2002).
 float autoExposure(const RadianceImage& image);
 
+// The display image of `image` as `display` says: one RGBA8 pixel per entry, R in the lowest
+// byte (the bytes the PNG holds, and what the viewer shows).
+std::vector<uint32_t> displayPixels(const RadianceImage& image, const DisplaySettings& display);
+
+// Writes RGBA8 pixels (R in the lowest byte, alpha dropped) as an 8-bit RGB PNG, atomically
+// like writeImage. Throws wp::Error on failure.
+void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& pixels);
+
 // Throws wp::Error unless `path` ends in .png or .exr (any case) and names a file in an
 // existing, writable directory; call it before rendering so a typo costs no render time.
 void checkOutputPath(const std::filesystem::path& path);

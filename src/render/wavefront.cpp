@@ -40,11 +40,25 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
 
 WavefrontRenderer::WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene,
                                      const RenderSettings& settings)
-    : backend_(backend), settings_(settings) {
+    : backend_(backend) {
+  backend_.loadScene(gpuScene);
+  configure(scene, gpuScene, settings);
+}
+
+void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings) {
+  settings_ = settings;
   settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
-  backend_.loadScene(gpuScene);
   backend_.configure(params_);
+  pathsDone_ = 0;
+}
+
+void WavefrontRenderer::restart(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings,
+                                bool reloadScene) {
+  if (reloadScene) {
+    backend_.loadScene(gpuScene);
+  }
+  configure(scene, gpuScene, settings);
 }
 
 void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats) {
@@ -74,26 +88,59 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
   ++stats.passes;
 }
 
+void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
+  const uint64_t pixels = params_.image.z;
+  uint32_t count = uint32_t(std::min<uint64_t>({params_.counts.w, maxCount, end - pathsDone_}));
+  runPass(uint32_t(pathsDone_ % pixels), uint32_t(pathsDone_ / pixels), count, stats);
+  pathsDone_ += count;
+  stats.samples += count;
+}
+
 RenderStats WavefrontRenderer::render(const std::function<void(double)>& progress) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t pixels = params_.image.z;
-  const uint64_t total = pixels * settings_.samplesPerPixel;
-  const uint64_t base = pixels * samplesDone_;
-  for (uint64_t done = 0; done < total;) {
-    uint32_t count = uint32_t(std::min<uint64_t>(params_.counts.w, total - done));
-    uint64_t linear = base + done;
-    runPass(uint32_t(linear % pixels), uint32_t(linear / pixels), count, stats);
-    done += count;
+  const uint64_t total = uint64_t(params_.image.z) * settings_.samplesPerPixel;
+  const uint64_t end = pathsDone_ + total;
+  while (pathsDone_ < end) {
+    runNextPass(end, params_.counts.w, stats);
     if (progress) {
-      progress(double(done) / double(total));
+      progress(double(stats.samples) / double(total));
     }
   }
-  samplesDone_ += settings_.samplesPerPixel;
-  stats.samples = total;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
+
+RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
+  RenderStats stats;
+  auto start = std::chrono::steady_clock::now();
+  const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
+  // Passes fill what is left of the budget at the measured rate, but never fall under
+  // kSmallestPass paths, and the frame ends rather than run a pass under a quarter of the
+  // budget: a small pass pays the fixed cost per pass (four dispatches per bounce) on few
+  // paths, and the rate it measured would shrink the next passes in turn. The first pass,
+  // with nothing measured yet, is the smallest: a whole pass of a CPU device could take
+  // seconds.
+  constexpr uint64_t kSmallestPass = 4096;
+  while (pathsDone_ < end) {
+    double left = budgetSeconds - stats.seconds;
+    uint64_t count = kSmallestPass;
+    if (secondsPerPath_ > 0.0) {
+      if (stats.passes > 0 && left < 0.25 * budgetSeconds) break;
+      count = std::max(kSmallestPass, uint64_t(left / secondsPerPath_));
+    } else if (stats.passes > 0 && left <= 0.0) {
+      break;
+    }
+    uint64_t before = pathsDone_;
+    double passStart = stats.seconds;
+    runNextPass(end, count, stats);
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    secondsPerPath_ = (stats.seconds - passStart) / double(pathsDone_ - before);
+  }
+  return stats;
+}
+
+uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.image.z); }
 
 RadianceImage WavefrontRenderer::image() {
   Accumulation acc = backend_.readAccumulation();
@@ -103,8 +150,10 @@ RadianceImage WavefrontRenderer::image() {
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
-  double n = std::max<uint32_t>(samplesDone_, 1);
+  const uint64_t fullSamples = pathsDone_ / pixels, startedPixels = pathsDone_ % pixels;
   for (size_t i = 0; i < pixels; ++i) {
+    // Mid-pass (progressive rendering), the first startedPixels pixels have one more sample.
+    double n = double(std::max<uint64_t>(fullSamples + (i < startedPixels ? 1 : 0), 1));
     glm::vec3 mean = glm::vec3(acc.sum[i]) / float(n);
     glm::vec3 meanSquare = glm::vec3(acc.sumSquares[i]) / float(n);
     // Unbiased sample variance, divided by n: the variance of the pixel's mean estimate.

@@ -37,16 +37,36 @@ public:
   // pass. Accumulates onto earlier calls' samples.
   RenderStats render(const std::function<void(double)>& progress);
 
+  // Progressive rendering (the viewer): runs whole passes, continuing where the last one
+  // stopped, until `budgetSeconds` is spent (at least one pass) or every pixel has
+  // `samplesPerPixel` samples. Passes are sized from the time earlier passes took per path
+  // so they end near the budget (at most the paths in flight). Paths follow the same order
+  // as render()'s, so a progressive render that reaches N samples equals render() of N
+  // samples bit for bit.
+  RenderStats renderFor(double budgetSeconds, uint32_t samplesPerPixel);
+  // Replaces the settings and the scene's camera and sky (makeRenderParams) and clears the
+  // accumulation. Reuploads the scene when `reloadScene` (a changed GpuScene).
+  void restart(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings, bool reloadScene);
+  // Samples every pixel has so far (some pixels may have one more, mid-pass).
+  uint32_t samplesPerPixelDone() const;
+
   // Per-pixel mean radiance and the variance of that mean, from the samples so far.
   RadianceImage image();
 
 private:
   void runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats);
+  // Runs the next pass of at most `maxCount` paths, stopping at path index `end`.
+  void runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats);
+  void configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
   Backend& backend_;
   RenderSettings settings_;
   gpu::RenderParams params_;
-  uint32_t samplesDone_ = 0;
+  // Paths traced since the last configure, in render order: path k is sample k / pixels of
+  // pixel k % pixels.
+  uint64_t pathsDone_ = 0;
+  // Measured seconds per path of the last progressive pass; 0 before the first.
+  double secondsPerPath_ = 0.0;
 };
 
 }  // namespace wp

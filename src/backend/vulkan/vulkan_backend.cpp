@@ -133,6 +133,7 @@ VulkanBackend::~VulkanBackend() {
   counters_ = {};
   countersReadback_ = {};
   accumulation_ = {};
+  accumulationReadback_ = {};
 }
 
 std::string VulkanBackend::deviceName() const {
@@ -393,7 +394,7 @@ PassResult VulkanBackend::endPass() {
 Accumulation VulkanBackend::readAccumulation() {
   Accumulation result;
   std::vector<glm::vec4> both(2ull * pixelCount_);
-  accumulation_.download(both.data(), both.size() * sizeof(glm::vec4));
+  accumulation_.download(both.data(), both.size() * sizeof(glm::vec4), accumulationReadback_);
   result.sum.assign(both.begin(), both.begin() + pixelCount_);
   result.sumSquares.assign(both.begin() + pixelCount_, both.end());
   return result;

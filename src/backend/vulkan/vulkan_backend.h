@@ -58,6 +58,7 @@ private:
   VulkanBuffer counters_;
   VulkanBuffer countersReadback_;
   VulkanBuffer accumulation_;
+  VulkanBuffer accumulationReadback_;  // staging kept across readAccumulation calls (the viewer's frames)
   uint32_t pixelCount_ = 0;
 
   // Kernel of each timestamp written in the current pass (query i ends kernel i's span).

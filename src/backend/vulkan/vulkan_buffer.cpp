@@ -82,10 +82,17 @@ void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {
 }
 
 void VulkanBuffer::download(void* data, VkDeviceSize bytes) {
+  VulkanBuffer staging;
+  download(data, bytes, staging);
+}
+
+void VulkanBuffer::download(void* data, VkDeviceSize bytes, VulkanBuffer& staging) {
   if (bytes == 0) {
     return;
   }
-  VulkanBuffer staging(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  if (staging.size() < bytes) {
+    staging = VulkanBuffer(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  }
   context_->runOnce([&](VkCommandBuffer cmd) {
     // Make every earlier shader write visible to the copy.
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};

@@ -50,14 +50,16 @@ bool hasLayer(const char* name) {
   return false;
 }
 
-VkInstance createInstance(bool validation) {
+}  // namespace
+
+VkInstance createVulkanInstance(bool validation, const std::vector<const char*>& requiredExtensions) {
   initLoader();
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "wavepath";
   app.apiVersion = VK_API_VERSION_1_1;
 
   std::vector<const char*> layers;
-  std::vector<const char*> extensions;
+  std::vector<const char*> extensions = requiredExtensions;
   VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
   VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
   features.enabledValidationFeatureCount = 1;
@@ -88,6 +90,21 @@ VkInstance createInstance(bool validation) {
   volkLoadInstanceOnly(instance);
   return instance;
 }
+
+VkDebugUtilsMessengerEXT createValidationMessenger(VkInstance instance) {
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messengerInfo.messageSeverity =
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messengerInfo.pfnUserCallback = onValidationMessage;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VK_CHECK(vkCreateDebugUtilsMessengerEXT(instance, &messengerInfo, nullptr, &messenger));
+  return messenger;
+}
+
+namespace {
 
 std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
   uint32_t count = 0;
@@ -178,7 +195,7 @@ VulkanDeviceInfo describe(VkPhysicalDevice device) {
 }  // namespace
 
 std::vector<VulkanDeviceInfo> listVulkanDevices() {
-  VkInstance instance = createInstance(false);
+  VkInstance instance = createVulkanInstance(false, {});
   std::vector<VulkanDeviceInfo> infos;
   try {
     for (VkPhysicalDevice device : physicalDevices(instance)) {
@@ -193,17 +210,10 @@ std::vector<VulkanDeviceInfo> listVulkanDevices() {
 }
 
 VulkanContext::VulkanContext(int deviceIndex, bool validation) {
-  instance = createInstance(validation);
+  instance = createVulkanInstance(validation, {});
   try {
     if (validation) {
-      VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-      messengerInfo.messageSeverity =
-          VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-      messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-      messengerInfo.pfnUserCallback = onValidationMessage;
-      VK_CHECK(vkCreateDebugUtilsMessengerEXT(instance, &messengerInfo, nullptr, &messenger_));
+      messenger_ = createValidationMessenger(instance);
     }
 
     std::vector<VkPhysicalDevice> devices = physicalDevices(instance);

@@ -17,6 +17,14 @@ struct VulkanDeviceInfo {
   uint64_t deviceLocalBytes = 0;
 };
 
+// A Vulkan 1.1 instance with `extensions` (and, with `validation`, the Khronos validation
+// layer with synchronization validation and debug utils); loads volk's instance functions
+// for it. Throws wp::Error when there is no loader, driver or (requested) layer.
+VkInstance createVulkanInstance(bool validation, const std::vector<const char*>& extensions);
+// Prints and counts (validationErrorCount) the validation layer's warnings and errors on
+// `instance`, which must have been created with validation.
+VkDebugUtilsMessengerEXT createValidationMessenger(VkInstance instance);
+
 // Lists every Vulkan device; throws wp::Error when there is no loader or no device.
 std::vector<VulkanDeviceInfo> listVulkanDevices();
 

@@ -1,0 +1,30 @@
+// The viewer's GLFW window: opening it, and the one error that sends users to `wavepath render`.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+struct GLFWwindow;
+
+namespace wp {
+
+// Initialises GLFW and opens a resizable window for Vulkan (no OpenGL context) of the given
+// size in pixels. Throws wp::Error, pointing to `wavepath render`, when there is no window
+// system (no DISPLAY), or GLFW finds no Vulkan loader able to present.
+class Window {
+public:
+  Window(uint32_t width, uint32_t height, const std::string& title);
+  ~Window();
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+
+  // The framebuffer's size in pixels (0 x 0 while minimised).
+  void framebufferSize(uint32_t& width, uint32_t& height) const;
+
+  GLFWwindow* handle = nullptr;
+};
+
+// Throws the viewer's "cannot show a window" error with `reason`.
+[[noreturn]] void failNoWindow(const std::string& reason);
+
+}  // namespace wp

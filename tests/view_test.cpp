@@ -1,0 +1,193 @@
+// `wavepath view` end to end, run by ctest under Xvfb (xvfb-run) on lavapipe with the
+// validation layer: a scripted run's screenshot against `wavepath render`, the window
+// capture, the OpenCL backend in the window, and the error without a window system.
+#include <gtest/gtest.h>
+
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "image/image_io.h"
+#include "support/run_wavepath.h"
+
+namespace wp::test {
+namespace {
+
+std::filesystem::path cornellBox() { return sourceDirectory() / "assets" / "cornell-box.gltf"; }
+
+// A scene, its size, samples and seed, as both commands take them.
+std::vector<std::string> sceneFlags(const std::string& backend) {
+  return {cornellBox().string(), "--width", "96", "--height", "96", "--spp", "6", "--seed", "7", "--backend", backend};
+}
+
+RunResult view(const std::string& backend, const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"view"};
+  for (const std::string& a : sceneFlags(backend)) args.push_back(a);
+  args.insert(args.end(), extra.begin(), extra.end());
+  RunResult r = runWavepath(args, {}, 300);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+  return r;
+}
+
+void render(const std::string& backend, const std::filesystem::path& out) {
+  std::vector<std::string> args = {"render"};
+  for (const std::string& a : sceneFlags(backend)) args.push_back(a);
+  args.insert(args.end(), {"-o", out.string()});
+  RunResult r = runWavepath(args, {}, 300);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+}
+
+struct Rgb8 {
+  int width = 0, height = 0;
+  std::vector<unsigned char> bytes;
+};
+
+Rgb8 readPng(const std::filesystem::path& path) {
+  Rgb8 image;
+  int channels = 0;
+  unsigned char* pixels = stbi_load(path.c_str(), &image.width, &image.height, &channels, 3);
+  EXPECT_NE(pixels, nullptr) << path;
+  if (pixels != nullptr) {
+    image.bytes.assign(pixels, pixels + size_t(image.width) * image.height * 3);
+    stbi_image_free(pixels);
+  }
+  return image;
+}
+
+// The viewer stops at --spp and traces the same paths (seeded by pixel, sample and seed) as
+// render, only split into smaller passes; the README promises bit-identical images across
+// pass splits, so the radiance and its variance must match exactly, not just statistically.
+void expectSameRadiance(const std::string& backend) {
+  std::filesystem::path dir = scratchDirectory("view-" + backend);
+  RunResult r = view(backend, {"--frames", "2", "--frame-budget", "5", "--screenshot", (dir / "view.exr").string()});
+  render(backend, dir / "render.exr");
+  RadianceImage a = readExr(dir / "view.exr"), b = readExr(dir / "render.exr");
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  ASSERT_EQ(a.mean.size(), b.mean.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < a.mean.size(); ++i) {
+    differing += a.mean[i] != b.mean[i] || a.variance[i] != b.variance[i];
+  }
+  EXPECT_EQ(differing, 0u) << "of " << a.mean.size() << " pixels";
+  // The scripted run reports its frames and speed at exit.
+  EXPECT_NE(r.out.find("view: "), std::string::npos) << r.out;
+}
+
+TEST(View, ScriptedRunMatchesRenderOnVulkan) { expectSameRadiance("vulkan"); }
+
+TEST(View, ScriptedRunMatchesRenderOnOpenCl) { expectSameRadiance("opencl"); }
+
+TEST(View, DisplayScreenshotEqualsRendersPng) {
+  std::filesystem::path dir = scratchDirectory("view-png");
+  view("vulkan", {"--frames", "1", "--screenshot", (dir / "view.png").string(), "--tonemap", "aces"});
+  std::vector<std::string> args = {"render"};
+  for (const std::string& a : sceneFlags("vulkan")) args.push_back(a);
+  args.insert(args.end(), {"-o", (dir / "render.png").string(), "--tonemap", "aces"});
+  ASSERT_EQ(runWavepath(args).exitCode, 0);
+  Rgb8 a = readPng(dir / "view.png"), b = readPng(dir / "render.png");
+  EXPECT_EQ(a.width, 96);
+  EXPECT_EQ(a.height, 96);
+  EXPECT_TRUE(a.bytes == b.bytes);  // same radiance (above) through the same packDisplay
+}
+
+// What the window shows: without the panel exactly the display image (the copy into the
+// swapchain keeps every byte, BGRA or RGBA), with it the panel covers part of it.
+TEST(View, WindowCaptureShowsTheImageAndThePanel) {
+  std::filesystem::path dir = scratchDirectory("view-capture");
+  view("vulkan", {"--frames", "2", "--screenshot", (dir / "image.png").string(), "--window-capture",
+                  (dir / "bare.png").string(), "--hide-panel"});
+  Rgb8 image = readPng(dir / "image.png"), bare = readPng(dir / "bare.png");
+  EXPECT_EQ(bare.width, 96);
+  EXPECT_EQ(bare.height, 96);
+  EXPECT_TRUE(bare.bytes == image.bytes);
+
+  view("vulkan", {"--frames", "2", "--window-capture", (dir / "panel.png").string()});
+  Rgb8 panel = readPng(dir / "panel.png");
+  ASSERT_EQ(panel.bytes.size(), image.bytes.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < panel.bytes.size(); i += 3) {
+    differing += std::memcmp(&panel.bytes[i], &image.bytes[i], 3) != 0;
+  }
+  // The panel's title bar alone spans the window's width (96 px) and ~19 px height.
+  EXPECT_GT(differing, 96u * 10u);
+}
+
+// Runs `wavepath view` with `flags` in the background and, once its window is mapped, acts
+// on it as a user would (x_window_input `action`), then waits for the scripted run to end.
+// Returns the viewer's stderr; fails the test on a non-zero exit.
+std::string viewWithWindowInput(const std::vector<std::string>& flags, const std::string& action,
+                                const std::filesystem::path& dir) {
+  std::string command = std::string("WAVEPATH_VALIDATION=1 ") + WAVEPATH_EXE + " view";
+  for (const std::string& f : flags) command += " '" + f + "'";
+  command += " 2>'" + (dir / "err.txt").string() + "' & pid=$!; for i in $(seq 40); do sleep 0.25; " X_WINDOW_INPUT
+             " " + action + " && break; done; wait $pid";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;  // the viewer's exit code (wait's)
+  std::ifstream err(dir / "err.txt");
+  return std::string((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+}
+
+// The window is resized from outside (as a user dragging its border) while a scripted run
+// goes on: the image follows the window, and the capture has the window's new size.
+TEST(View, ImageFollowsAResizedWindow) {
+  std::filesystem::path dir = scratchDirectory("view-resize");
+  std::filesystem::path image = dir / "image.png", window = dir / "window.png";
+  std::string err = viewWithWindowInput({cornellBox().string(), "--width", "96", "--height", "96", "--frames", "300",
+                                         "--frame-budget", "5", "--screenshot", image.string(), "--window-capture",
+                                         window.string()},
+                                        "resize 'wavepath view' 160 120", dir);
+  Rgb8 a = readPng(image), b = readPng(window);
+  EXPECT_EQ(a.width, 160);
+  EXPECT_EQ(a.height, 120);
+  EXPECT_EQ(b.width, 160);
+  EXPECT_EQ(b.height, 120);
+  EXPECT_EQ(err.find("validation"), std::string::npos) << err;
+}
+
+// W held in the real window moves the camera: the final image (the target spp of the moved
+// view, since the move restarts the accumulation) is no longer the scene camera's render.
+// Unmoved, the two are equal bit for bit (ScriptedRunMatchesRender*), so any differing
+// pixel is the move; a forward move of a few tenths of the box changes most of them.
+TEST(View, HeldKeyInTheWindowMovesTheCamera) {
+  std::filesystem::path dir = scratchDirectory("view-key");
+  std::vector<std::string> flags = sceneFlags("vulkan");
+  flags.insert(flags.end(), {"--frames", "100", "--frame-budget", "20", "--screenshot", (dir / "view.exr").string()});
+  std::string err = viewWithWindowInput(flags, "key 'wavepath view' w 600", dir);
+  EXPECT_EQ(err.find("validation"), std::string::npos) << err;
+  render("vulkan", dir / "render.exr");
+  RadianceImage moved = readExr(dir / "view.exr"), home = readExr(dir / "render.exr");
+  ASSERT_EQ(moved.mean.size(), home.mean.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < moved.mean.size(); ++i) differing += moved.mean[i] != home.mean[i];
+  EXPECT_GT(differing, moved.mean.size() / 2);
+}
+
+TEST(View, WithoutAWindowSystemPointsToRender) {
+  std::vector<std::string> args = {"view", cornellBox().string(), "--frames", "1"};
+  RunResult r = runWavepath(args, {"DISPLAY="}, 60);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("wavepath: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("wavepath render"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST(View, ScreenshotNeedsAScriptedRunAndTheCaptureAPng) {
+  RunResult r = runWavepath({"view", cornellBox().string(), "--screenshot", "x.png"}, {}, 60);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+  std::filesystem::path capture = scratchDirectory("view-bad-capture") / "window.exr";
+  r = runWavepath({"view", cornellBox().string(), "--frames", "1", "--window-capture", capture.string()}, {}, 60);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_NE(r.err.find("must end in .png"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(capture));
+}
+
+}  // namespace
+}  // namespace wp::test
