@@ -288,20 +288,14 @@ TEST(OpenCl, KernelBuildFailurePrintsTheCompilerLogThenOneErrorLine) {
 }
 
 TEST(OpenCl, TooLittleDeviceMemoryIsOneClearError) {
-  // The largest image, 16384 x 16384, needs 8 GiB for its running sums alone.
-  RunResult devices = runWavepath({"devices"}, {}, 60);
-  size_t list = devices.out.find("OpenCL devices:");
-  size_t unit = devices.out.find(" GiB global memory", list);
-  ASSERT_NE(unit, std::string::npos) << devices.out;
-  double gibibytes = std::stod(devices.out.substr(devices.out.rfind(", ", unit) + 2));
-  if (gibibytes >= 8.0) {
-    GTEST_SKIP() << "the OpenCL device has " << gibibytes << " GiB, enough for the largest image";
-  }
+  // The largest image, 16384 x 16384, needs 8 GiB for its running sums alone. PoCL (CI's
+  // device) reports the machine's memory, so POCL_MEMORY_LIMIT caps what it reports at 1 GiB:
+  // the test then runs on every machine instead of skipping where memory is plentiful.
   std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
   std::filesystem::path output = scratchDirectory("out") / "image.png";
   RunResult r = runWavepath({"render", scene.string(), "-o", output.string(), "--backend", "opencl", "--width",
                              "16384", "--height", "16384", "--spp", "1"},
-                            {}, 120);
+                            {"POCL_MEMORY_LIMIT=1"}, 120);
   expectErrorAsLastLine(r, "of device memory but OpenCL device");
   EXPECT_FALSE(std::filesystem::exists(output));
 }
