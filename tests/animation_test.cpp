@@ -172,6 +172,26 @@ TEST(AnimatedScene, NodeChannelsMoveInstancesSpheresAndTheCamera) {
   expectVec3(origin(poseScene(scene, std::nullopt).instances[0].objectToWorld), {0, 0, 0});
 }
 
+TEST(AnimatedScene, AShutterIntervalGivesMovingObjectsTheirTransformAtClose) {
+  const Scene scene = loadScene(data("anim_trs.gltf"));
+  const Scene blurred = poseSceneOverShutter(scene, 0.5, 0.25);
+  const Scene open = poseScene(scene, 0.5);
+  const Scene close = poseScene(scene, 0.75);
+  // The mover, its child and the spinner move between 0.5 and 0.75 s; the static one does not.
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(blurred.instances[i].objectToWorld, open.instances[i].objectToWorld) << i;
+    ASSERT_TRUE(blurred.instances[i].objectToWorldAtClose) << i;
+    EXPECT_EQ(*blurred.instances[i].objectToWorldAtClose, close.instances[i].objectToWorld) << i;
+  }
+  EXPECT_FALSE(blurred.instances[3].objectToWorldAtClose);
+  ASSERT_TRUE(blurred.spheres[0].objectToWorldAtClose);  // its scale grows
+  EXPECT_EQ(*blurred.spheres[0].objectToWorldAtClose, close.spheres[0].objectToWorld);
+  // A closed shutter is an instant.
+  for (const MeshInstance& instance : poseSceneOverShutter(scene, 0.5, 0.0).instances) {
+    EXPECT_FALSE(instance.objectToWorldAtClose);
+  }
+}
+
 TEST(AnimatedScene, MorphTargetsBlendPositionsAndNormalsByNodeAndMeshWeights) {
   const Scene scene = loadScene(data("anim_morph.gltf"));
   // Each node gets its own copy of the mesh, since each has its own weights.

@@ -53,7 +53,11 @@ struct PreparedScene {
 // Loads the scene and sky and fills in the image size the flags left out; throws wp::Error
 // on bad input.
 Scene loadSceneWithSky(RenderOptions& options);
-// loadSceneWithSky, posed at --time when given, packed, with the camera flags applied.
+// The camera's shutter time: --shutter, else the file's camera extras; 0 when neither says.
+// With an animation, a render at a time sees the scene over this interval (motion blur).
+double shutterSeconds(const RenderOptions& options, const Scene& scene);
+// loadSceneWithSky, posed at --time when given (over the shutter interval), packed, with the
+// camera flags applied.
 PreparedScene prepareScene(RenderOptions& options);
 
 struct ViewOptions {

@@ -222,6 +222,10 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
       ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
 }
 
+double shutterSeconds(const RenderOptions& o, const Scene& scene) {
+  return o.camera.shutter.value_or(scene.camera.optics.shutter);
+}
+
 bool validationRequested(const RenderOptions& o) {
   const char* validationEnv = std::getenv("WAVEPATH_VALIDATION");
   return o.validate || (validationEnv != nullptr && std::string(validationEnv) == "1");
@@ -242,7 +246,7 @@ PreparedScene prepareScene(RenderOptions& o) {
   PreparedScene p;
   p.scene = loadSceneWithSky(o);
   if (o.time) {
-    p.scene = poseScene(p.scene, *o.time);
+    p.scene = poseSceneOverShutter(p.scene, *o.time, shutterSeconds(o, p.scene));
   }
   p.gpuScene = packScene(bakeSingleUseMeshes(p.scene));
   applyCameraFlags(o.camera, p.scene.camera, p.gpuScene);
@@ -268,9 +272,11 @@ int runRender(RenderOptions o) {
   BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);
   PoseUploader uploader;
+  const double shutter = shutterSeconds(o, scene);
   for (uint32_t frame = frames.first;; ++frame) {
     const std::optional<double> time = o.frames.empty() ? o.time : std::optional<double>(frame / o.fps);
-    renderFrame(o, choice, *backend, uploader, time ? poseScene(scene, *time) : scene, framePath(o.output, frame));
+    renderFrame(o, choice, *backend, uploader, time ? poseSceneOverShutter(scene, *time, shutter) : scene,
+                framePath(o.output, frame));
     if (frame == frames.last) break;  // tested here, as frames.last may be the largest uint32_t
   }
   return 0;

@@ -64,4 +64,10 @@ struct SceneAnimation {
 // Planes keep their rest pose. A scene without animation data is returned unchanged.
 Scene poseScene(const Scene& scene, std::optional<double> seconds);
 
+// The scene as a camera sees it with its shutter open from `open` for `shutter` seconds:
+// posed at `open`, and every instance and sphere that moves meanwhile carries its transform at
+// shutter close for motion blur (objectToWorldAtClose). Deforming meshes keep their vertices
+// at `open`, and the camera its place. With shutter <= 0 it is poseScene(scene, open).
+Scene poseSceneOverShutter(const Scene& scene, double open, double shutter);
+
 }  // namespace wp

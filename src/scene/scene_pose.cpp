@@ -90,4 +90,23 @@ Scene poseScene(const Scene& scene, std::optional<double> seconds) {
   return posed;
 }
 
+Scene poseSceneOverShutter(const Scene& scene, double open, double shutter) {
+  Scene posed = poseScene(scene, open);
+  if (!(shutter > 0.0) || !scene.animation) {
+    return posed;
+  }
+  const Scene closed = poseScene(scene, open + shutter);
+  for (size_t i = 0; i < posed.instances.size(); ++i) {
+    if (closed.instances[i].objectToWorld != posed.instances[i].objectToWorld) {
+      posed.instances[i].objectToWorldAtClose = closed.instances[i].objectToWorld;
+    }
+  }
+  for (size_t i = 0; i < posed.spheres.size(); ++i) {
+    if (closed.spheres[i].objectToWorld != posed.spheres[i].objectToWorld) {
+      posed.spheres[i].objectToWorldAtClose = closed.spheres[i].objectToWorld;
+    }
+  }
+  return posed;
+}
+
 }  // namespace wp
