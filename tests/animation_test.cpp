@@ -236,5 +236,25 @@ TEST(AnimatedScene, SkinningBlendsTheJointsAndIgnoresTheMeshNodesTransform) {
   }
 }
 
+TEST(MeshDeformation, SkinningTurnsTangentsAndFlipsTheBitangentSignUnderAMirror) {
+  MeshDeformation d;
+  d.restPositions = {glm::vec3(1, 0, 0)};
+  d.restNormals = {glm::vec3(0, 0, 1)};
+  d.restTangents = {glm::vec4(1, 0, 0, 1)};
+  d.joints = {glm::uvec4(0)};
+  d.jointWeights = {glm::vec4(1, 0, 0, 0)};
+  Mesh mesh;
+  // A quarter turn about +z takes the tangent +x to +y and keeps the bitangent's side.
+  deformMesh(d, {}, {glm::rotate(glm::mat4(1.0f), std::numbers::pi_v<float> / 2, glm::vec3(0, 0, 1))}, mesh);
+  ASSERT_EQ(mesh.tangents.size(), 1u);
+  expectVec3(glm::vec3(mesh.tangents[0]), {0, 1, 0});
+  EXPECT_EQ(mesh.tangents[0].w, 1.0f);
+  // A mirror in x reverses the tangent and, since cross(n, t) no longer follows the mirrored
+  // bitangent, its sign.
+  deformMesh(d, {}, {glm::scale(glm::mat4(1.0f), glm::vec3(-2, 1, 1))}, mesh);
+  expectVec3(glm::vec3(mesh.tangents[0]), {-1, 0, 0});
+  EXPECT_EQ(mesh.tangents[0].w, -1.0f);
+}
+
 }  // namespace
 }  // namespace wp

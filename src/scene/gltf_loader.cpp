@@ -224,6 +224,7 @@ private:
     }
     deforming.deformation.restPositions = mesh.positions;
     deforming.deformation.restNormals = mesh.normals;
+    deforming.deformation.restTangents = mesh.tangents;
     mesh.deforming = true;
     const bool animated = gltfNode.skin == -1 && animatedNode_[node];
     scene_.instances.push_back({deforming.mesh, world, animated});

@@ -24,6 +24,7 @@ void deformMesh(const MeshDeformation& d, const std::vector<float>& weights,
                 const std::vector<glm::mat4>& jointMatrices, Mesh& mesh) {
   mesh.positions = d.restPositions;
   mesh.normals = d.restNormals;
+  mesh.tangents = d.restTangents;
   const bool hasNormals = !mesh.normals.empty();
   for (size_t t = 0; t < d.targets.size(); ++t) {
     const float w = weights[t];
@@ -50,6 +51,11 @@ void deformMesh(const MeshDeformation& d, const std::vector<float>& weights,
                            w.w * jointMatrices[j.w];
     mesh.positions[v] = glm::vec3(skin * glm::vec4(mesh.positions[v], 1.0f));
     if (hasNormals) mesh.normals[v] = unitOrZero(normalMatrix(glm::mat3(skin)) * mesh.normals[v]);
+    if (!mesh.tangents.empty()) {
+      const glm::vec4 t = d.restTangents[v];
+      const float sign = glm::determinant(glm::mat3(skin)) < 0.0f ? -t.w : t.w;
+      mesh.tangents[v] = glm::vec4(unitOrZero(glm::mat3(skin) * glm::vec3(t)), sign);
+    }
   }
 }
 
