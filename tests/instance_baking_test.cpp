@@ -86,6 +86,12 @@ Mesh randomTangentMesh(std::mt19937& rng, int triangles) {
 }
 
 // The normal-mapping frame at a hit, as normalMapped (integrator.h) orthogonalizes it.
+// The closest hit of a ray in `g` (no planes, at shutter time 0).
+gpu::Hit traceClosest(const GpuScene& g, glm::vec3 origin, glm::vec3 direction) {
+  return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot, 0u,
+                           origin, direction, WP_FLT_MAX, 0.0f);
+}
+
 struct TangentFrame {
   glm::vec3 normal, tangent, bitangent;
 };
@@ -132,10 +138,7 @@ TEST(InstanceBaking, TransformsTangentsAndFlipsTheSignWhenMirrored) {
   for (int i = 0; i < 20000; ++i) {
     glm::vec3 origin(3.0f * u(rng), 3.0f, 1.5f * u(rng));
     glm::vec3 direction = glm::normalize(glm::vec3(u(rng), -1.5f, u(rng)));
-    auto trace = [&](const GpuScene& g) {
-      return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot,
-                               0u, origin, direction, WP_FLT_MAX, 0.0f);
-    };
+    auto trace = [&](const GpuScene& g) { return traceClosest(g, origin, direction); };
     gpu::Hit a = trace(instanced);
     gpu::Hit b = trace(baked);
     ASSERT_EQ(a.instance == WP_INVALID, b.instance == WP_INVALID) << "ray " << i;
@@ -204,10 +207,7 @@ TEST(InstanceBaking, RaysHitTheSameSurfacesBeforeAndAfter) {
   for (int i = 0; i < 20000; ++i) {
     glm::vec3 origin(4.0f * u(rng), 4.0f * u(rng), 4.0f * u(rng));
     glm::vec3 direction = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
-    auto trace = [&](const GpuScene& g) {
-      return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot,
-                               0u, origin, direction, WP_FLT_MAX, 0.0f);
-    };
+    auto trace = [&](const GpuScene& g) { return traceClosest(g, origin, direction); };
     gpu::Hit a = trace(instanced);
     gpu::Hit b = trace(baked);
     ASSERT_EQ(a.instance == WP_INVALID, b.instance == WP_INVALID) << "ray " << i;
