@@ -203,6 +203,23 @@ TEST_P(MotionBlur, EqualsTheAverageOfRendersAtManyInstants) {
   EXPECT_GT(largestRegionZ(blurred, atOpen), 10.0);
 }
 
+// Scenes where nothing moves run the stages built without motion blur, which would otherwise
+// cost them time (README, Motion blur); the test above checks that moving ones get the motion
+// build (with the still one they would render as at shutter open). Switching builds must
+// leave every buffer bound to the switched-in kernels: a still render after a moving one
+// equals, bit for bit, the same render before it.
+TEST_P(MotionBlur, StillScenesRunTheStagesWithoutMotion) {
+  Scene moving = movingScene();
+  Scene still = posedAt(moving, 0.0f);
+  RadianceImage before = render(still, 4, 7);
+  EXPECT_FALSE(backend_->motionKernels());
+  render(moving, 4, 7);
+  EXPECT_TRUE(backend_->motionKernels());
+  RadianceImage after = render(still, 4, 7);
+  EXPECT_FALSE(backend_->motionKernels());
+  EXPECT_TRUE(before.mean == after.mean && before.variance == after.variance);
+}
+
 INSTANTIATE_TEST_SUITE_P(Backend, MotionBlur, ::testing::Values(std::string("vulkan"), std::string("opencl")),
                          backendName);
 

@@ -17,6 +17,8 @@ inline float asFloat(uint u) { return std::bit_cast<float>(u); }
 inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 }  // namespace wp::gpu
 
+// The host reference places moving instances at every time (motion.h, instanceAt).
+#define WP_MOTION_BLUR 1
 // Whether `x` holds in every active lane of the subgroup; only steers performance.
 #define WP_SUBGROUP_ALL(x) (x)
 #define WP_BEGIN namespace wp::gpu {

@@ -34,6 +34,9 @@ struct GpuScene {
   // instances with a singular transform are left out.
   std::vector<gpu::GpuInstance> instances;
   uint32_t placedInstances = 0;
+  // Whether any instance moves during the shutter (has motion keys): the backends then run
+  // the stages built with WP_MOTION_BLUR (motion.h), else the ones without.
+  bool moving() const { return instances.size() > placedInstances; }
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
   // World-space emissive triangles: for each still mesh instance in `instances` order, its

@@ -50,8 +50,12 @@ public:
   virtual std::string deviceName() const = 0;
   // The most paths the device can keep in flight in one pass (dispatch and buffer limits).
   virtual uint32_t maxPathsInFlight() const = 0;
-  // Uploads the scene. Call before configure; may be called again to replace the scene.
+  // Uploads the scene and picks the stage kernels for it: with motion blur where something
+  // moves (GpuScene::moving), else without. Call before configure; may be called again to
+  // replace the scene.
   virtual void loadScene(const GpuScene& scene) = 0;
+  // Whether the kernels of the loaded scene are the motion-blur ones.
+  virtual bool motionKernels() const = 0;
   // Sets the render parameters and sizes path state for params.counts.w paths and the
   // accumulation for params.image.z pixels; clears the accumulation.
   virtual void configure(const gpu::RenderParams& params) = 0;

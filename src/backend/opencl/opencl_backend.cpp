@@ -28,10 +28,17 @@ OpenClBuffer uploadVector(cl_context context, const std::vector<T>& data) {
 
 OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate)
     : context_(std::make_unique<OpenClContext>(deviceIndex)), dispatchMode_(dispatch), validate_(validate) {
-  program_ = std::make_unique<OpenClProgram>(*context_, validate ? "-cl-std=CL1.2 -Werror" : "-cl-std=CL1.2");
+  buildVariant(false);
+}
+
+void OpenClBackend::buildVariant(bool motion) {
+  Variant& v = variants_[motion];
+  // The binary cache keys on the options, so each variant is cached apart.
+  std::string options = validate_ ? "-cl-std=CL1.2 -Werror" : "-cl-std=CL1.2";
+  v.program = std::make_unique<OpenClProgram>(*context_, motion ? options + " -DWP_MOTION_BLUR=1" : options);
   for (int k = 0; k < kKernelCount; ++k) {
     cl_int result = CL_SUCCESS;
-    kernels_[k] = clCreateKernel(program_->handle(), kernelName(Kernel(k)), &result);
+    v.kernels[k] = clCreateKernel(v.program->handle(), kernelName(Kernel(k)), &result);
     CL_CHECK(result);
   }
 }
@@ -41,9 +48,11 @@ OpenClBackend::~OpenClBackend() {
   for (auto& [kernel, event] : events_) {
     clReleaseEvent(event);
   }
-  for (cl_kernel kernel : kernels_) {
-    if (kernel != nullptr) {
-      clReleaseKernel(kernel);
+  for (Variant& v : variants_) {
+    for (cl_kernel kernel : v.kernels) {
+      if (kernel != nullptr) {
+        clReleaseKernel(kernel);
+      }
     }
   }
 }
@@ -60,7 +69,7 @@ uint32_t OpenClBackend::maxPathsInFlight() const {
 }
 
 void OpenClBackend::bind(uint32_t binding, const OpenClBuffer& buffer) {
-  for (cl_kernel kernel : kernels_) {
+  for (cl_kernel kernel : variants_[motion_].kernels) {
     CL_CHECK(clSetKernelArg(kernel, binding, sizeof(cl_mem), buffer.argument()));
   }
 }
@@ -81,6 +90,19 @@ void OpenClBackend::checkMemory(uint64_t bytes, uint64_t largest, const char* la
 
 void OpenClBackend::loadScene(const GpuScene& scene) {
   clFinish(context_->queue);
+  // The program without motion blur comes from the constructor; the other is built when the
+  // first moving scene comes. Arguments are bound per kernel, so the switched-to kernels get
+  // the path state here and the scene below.
+  bool motion = scene.moving();
+  if (motion != motion_) {
+    if (variants_[motion].program == nullptr) {
+      buildVariant(motion);
+    }
+    motion_ = motion;
+    if (params_.handle() != nullptr) {
+      bindPathState();
+    }
+  }
   cl_context context = context_->context;
   sceneBuffers_[0] = uploadVector(context, scene.nodes);
   sceneBuffers_[1] = uploadVector(context, scene.triangles);
@@ -137,6 +159,10 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
   CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,
                                accumulation_.size(), 0, nullptr, nullptr));
   CL_CHECK(clFinish(context_->queue));
+  bindPathState();
+}
+
+void OpenClBackend::bindPathState() {
   bind(WP_BINDING_PARAMS, params_);
   bind(WP_BINDING_RAYS, rays_);
   bind(WP_BINDING_HITS, hits_);
@@ -186,11 +212,12 @@ void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants,
     return;
   }
   int k = static_cast<int>(kernel);
-  CL_CHECK(clSetKernelArg(kernels_[k], WP_ARG_PASS, sizeof(constants), &constants));
+  cl_kernel clKernel = variants_[motion_].kernels[k];
+  CL_CHECK(clSetKernelArg(clKernel, WP_ARG_PASS, sizeof(constants), &constants));
   size_t local = WP_WORKGROUP_SIZE;
   size_t global = (size_t(threads) + local - 1) / local * local;
   cl_event event = nullptr;
-  CL_CHECK(clEnqueueNDRangeKernel(context_->queue, kernels_[k], 1, nullptr, &global, &local, 0, nullptr, &event));
+  CL_CHECK(clEnqueueNDRangeKernel(context_->queue, clKernel, 1, nullptr, &global, &local, 0, nullptr, &event));
   events_.emplace_back(k, event);
 }
 
@@ -242,7 +269,7 @@ PassResult OpenClBackend::endPass() {
   if (validate_) {
     checkCounters(counters);
   }
-  program_->cacheBinary();
+  variants_[motion_].program->cacheBinary();
   return result;
 }
 

@@ -35,6 +35,7 @@ public:
   std::string deviceName() const override;
   uint32_t maxPathsInFlight() const override;
   void loadScene(const GpuScene& scene) override;
+  bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
   void beginPass() override;
   void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
@@ -42,19 +43,29 @@ public:
   Accumulation readAccumulation() override;
 
 private:
-  // Sets kernel argument `binding` (layout.h) of every kernel to `buffer`.
+  // Builds the program and kernels with (`motion`) or without WP_MOTION_BLUR.
+  void buildVariant(bool motion);
+  // Sets kernel argument `binding` (layout.h) of every kernel of the current variant to `buffer`.
   void bind(uint32_t binding, const OpenClBuffer& buffer);
   // Work items for a launch sized by the queue whose dispatch word is `word`.
   uint32_t queueThreads(uint32_t word, uint32_t pathCount);
   // The counters buffer as words (WP_COUNTER_*), after everything enqueued so far.
   std::array<uint32_t, WP_COUNTER_WORDS> readCounters();
+  // Binds the buffers configure made (everything but the scene) to the current variant.
+  void bindPathState();
   // Throws unless a buffer set of `bytes` in total, the largest `largest`, fits the device.
   void checkMemory(uint64_t bytes, uint64_t largest, const char* largestName) const;
   void checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& counters) const;
 
   std::unique_ptr<OpenClContext> context_;
-  std::unique_ptr<OpenClProgram> program_;
-  std::array<cl_kernel, kKernelCount> kernels_{};
+  // The stage kernels built without ([0]) and with ([1]) motion blur; [1] only once a
+  // moving scene was loaded. motion_ picks the ones loadScene chose.
+  struct Variant {
+    std::unique_ptr<OpenClProgram> program;
+    std::array<cl_kernel, kKernelCount> kernels{};
+  };
+  std::array<Variant, 2> variants_;
+  bool motion_ = false;
   ClDispatch dispatchMode_;
   bool validate_;
 

@@ -10,9 +10,12 @@
 #include "core/error.h"
 #include "spirv/accumulate_spv.h"
 #include "spirv/advance_spv.h"
+#include "spirv/connect_motion_spv.h"
 #include "spirv/connect_spv.h"
+#include "spirv/extend_motion_spv.h"
 #include "spirv/extend_spv.h"
 #include "spirv/generate_spv.h"
+#include "spirv/shade_motion_spv.h"
 #include "spirv/shade_spv.h"
 
 namespace wp {
@@ -26,13 +29,21 @@ struct SpirvCode {
   size_t bytes;
 };
 
-SpirvCode spirvFor(Kernel kernel) {
+// The stage's code with or without motion blur (the stages that never place an instance
+// have one build, shaders/CMakeLists.txt).
+SpirvCode spirvFor(Kernel kernel, bool motion) {
   switch (kernel) {
     case Kernel::Generate: return {generate_spv, sizeof(generate_spv)};
-    case Kernel::Extend: return {extend_spv, sizeof(extend_spv)};
-    case Kernel::Shade: return {shade_spv, sizeof(shade_spv)};
+    case Kernel::Extend:
+      return motion ? SpirvCode{extend_motion_spv, sizeof(extend_motion_spv)}
+                    : SpirvCode{extend_spv, sizeof(extend_spv)};
+    case Kernel::Shade:
+      return motion ? SpirvCode{shade_motion_spv, sizeof(shade_motion_spv)}
+                    : SpirvCode{shade_spv, sizeof(shade_spv)};
     case Kernel::Advance: return {advance_spv, sizeof(advance_spv)};
-    case Kernel::Connect: return {connect_spv, sizeof(connect_spv)};
+    case Kernel::Connect:
+      return motion ? SpirvCode{connect_motion_spv, sizeof(connect_motion_spv)}
+                    : SpirvCode{connect_spv, sizeof(connect_spv)};
     case Kernel::Accumulate: return {accumulate_spv, sizeof(accumulate_spv)};
   }
   return {nullptr, 0};
@@ -74,7 +85,11 @@ void uploadVector(VulkanContext& context, VulkanBuffer& buffer, const std::vecto
 
 VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
     : context_(std::make_unique<VulkanContext>(deviceIndex, validation)) {
-  createPipelines();
+  createLayouts();
+  for (int k = 0; k < kKernelCount; ++k) {
+    SpirvCode code = spirvFor(Kernel(k), motion_);
+    pipelines_[k] = createPipeline(code.words, code.bytes);
+  }
   VkDevice device = context_->device;
 
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, WP_BINDING_COUNT},
@@ -149,7 +164,7 @@ uint32_t VulkanBackend::maxPathsInFlight() const {
   return uint32_t(std::min({byDispatch, byStorage, byTexels, uint64_t(UINT32_MAX)}));
 }
 
-void VulkanBackend::createPipelines() {
+void VulkanBackend::createLayouts() {
   VkDevice device = context_->device;
   std::vector<VkDescriptorSetLayoutBinding> bindings(WP_BINDING_COUNT);
   for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
@@ -170,28 +185,42 @@ void VulkanBackend::createPipelines() {
   pipelineLayoutInfo.pushConstantRangeCount = 1;
   pipelineLayoutInfo.pPushConstantRanges = &push;
   VK_CHECK(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_));
+}
 
-  for (int k = 0; k < kKernelCount; ++k) {
-    SpirvCode code = spirvFor(static_cast<Kernel>(k));
-    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = code.bytes;
-    moduleInfo.pCode = code.words;
-    VkShaderModule module;
-    VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
-    info.stage.pName = "main";
-    info.layout = pipelineLayout_;
-    VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipelines_[k]);
-    vkDestroyShaderModule(device, module, nullptr);
-    VK_CHECK(result);
-  }
+VkPipeline VulkanBackend::createPipeline(const uint32_t* words, size_t bytes) {
+  VkDevice device = context_->device;
+  VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  moduleInfo.codeSize = bytes;
+  moduleInfo.pCode = words;
+  VkShaderModule module;
+  VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.layout = pipelineLayout_;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  vkDestroyShaderModule(device, module, nullptr);
+  VK_CHECK(result);
+  return pipeline;
 }
 
 void VulkanBackend::loadScene(const GpuScene& scene) {
   vkDeviceWaitIdle(context_->device);
+  // Swap in the other build of the stages that have two (the still ones from the
+  // constructor until a moving scene comes); a scene like the last costs nothing.
+  bool motion = scene.moving();
+  for (int k = 0; k < kKernelCount; ++k) {
+    SpirvCode code = spirvFor(Kernel(k), motion);
+    if (code.words != spirvFor(Kernel(k), motion_).words) {
+      vkDestroyPipeline(context_->device, pipelines_[k], nullptr);
+      pipelines_[k] = VK_NULL_HANDLE;  // so that a failure below leaves nothing to destroy twice
+      pipelines_[k] = createPipeline(code.words, code.bytes);
+    }
+  }
+  motion_ = motion;
   uploadVector(*context_, sceneBuffers_[0], scene.nodes);
   uploadVector(*context_, sceneBuffers_[1], scene.triangles);
   uploadVector(*context_, sceneBuffers_[2], scene.instances);

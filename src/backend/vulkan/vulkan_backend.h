@@ -21,6 +21,7 @@ public:
   std::string deviceName() const override;
   uint32_t maxPathsInFlight() const override;
   void loadScene(const GpuScene& scene) override;
+  bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
   void beginPass() override;
   void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
@@ -28,7 +29,9 @@ public:
   Accumulation readAccumulation() override;
 
 private:
-  void createPipelines();
+  void createLayouts();
+  // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout.
+  VkPipeline createPipeline(const uint32_t* words, size_t bytes);
   void writeDescriptors();
   // A view of the whole buffer as texels of `format` (RGBA32UI or R32UI) (kept until the descriptors are rewritten).
   VkBufferView texelView(const VulkanBuffer& buffer, VkFormat format);
@@ -39,6 +42,7 @@ private:
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   std::array<VkPipeline, kKernelCount> pipelines_{};
+  bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet descriptorSet_ = VK_NULL_HANDLE;
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
