@@ -74,10 +74,11 @@ double median(std::vector<double> values) {
 class ViewerLoop {
 public:
   ViewerLoop(ViewOptions& v, PreparedScene& p, Window& window, Backend& backend, Presenter& presenter)
-      : v_(v), scene_(p.scene), gpuScene_(p.gpuScene), window_(window), backend_(backend), presenter_(presenter),
+      : v_(v), scene_(p.scene), gpuScene_(p.uploader.gpuScene()), window_(window), backend_(backend),
+        presenter_(presenter),
         settings_(v.render.settings), optics_(p.scene.camera.optics),
-        controller_(p.scene.camera, 0.5f * autofocusDistance(p.scene.camera, p.gpuScene)),
-        renderer_(backend, p.scene, p.gpuScene, sizedSettings()) {
+        controller_(p.scene.camera, 0.5f * autofocusDistance(p.scene.camera, gpuScene_)),
+        renderer_(backend, p.scene, gpuScene_, sizedSettings()) {
     controls_.settings = &settings_;
     controls_.optics = &optics_;
     controls_.display = &v_.render.camera;
@@ -298,7 +299,7 @@ private:
 
   ViewOptions& v_;
   Scene& scene_;
-  GpuScene& gpuScene_;
+  const GpuScene& gpuScene_;  // the uploader's
   Window& window_;
   Backend& backend_;
   Presenter& presenter_;
