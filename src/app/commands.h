@@ -71,6 +71,8 @@ struct ViewOptions {
   std::string windowCapture;   // scripted: write the whole window, panel included, as PNG at exit
   float frameBudgetMs = 33.0f;  // time per displayed frame (path tracing gets what the rest leaves)
   bool hidePanel = false;
+  bool play = false;  // start playing the animation (at --time, else 0)
+  bool loop = false;  // play the animation in a loop; else playback stops at its end
 };
 
 // Adds `view` to the app.
