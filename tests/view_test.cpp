@@ -1,6 +1,7 @@
 // `wavepath view` end to end, run by ctest under Xvfb (xvfb-run) on lavapipe with the
 // validation layer: a scripted run's screenshot against `wavepath render`, the window
-// capture, the OpenCL backend in the window, and the error without a window system.
+// capture, the OpenCL backend in the window, animation playback, and the error without a
+// window system.
 #include <gtest/gtest.h>
 
 #include <stb_image.h>
@@ -49,6 +50,16 @@ struct Rgb8 {
   std::vector<unsigned char> bytes;
 };
 
+// Pixels whose mean radiance or variance differ at all.
+size_t differingPixels(const RadianceImage& a, const RadianceImage& b) {
+  EXPECT_EQ(a.mean.size(), b.mean.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < std::min(a.mean.size(), b.mean.size()); ++i) {
+    differing += a.mean[i] != b.mean[i] || a.variance[i] != b.variance[i];
+  }
+  return differing;
+}
+
 Rgb8 readPng(const std::filesystem::path& path) {
   Rgb8 image;
   int channels = 0;
@@ -71,12 +82,7 @@ void expectSameRadiance(const std::string& backend) {
   RadianceImage a = readExr(dir / "view.exr"), b = readExr(dir / "render.exr");
   ASSERT_EQ(a.width, b.width);
   ASSERT_EQ(a.height, b.height);
-  ASSERT_EQ(a.mean.size(), b.mean.size());
-  size_t differing = 0;
-  for (size_t i = 0; i < a.mean.size(); ++i) {
-    differing += a.mean[i] != b.mean[i] || a.variance[i] != b.variance[i];
-  }
-  EXPECT_EQ(differing, 0u) << "of " << a.mean.size() << " pixels";
+  EXPECT_EQ(differingPixels(a, b), 0u) << "of " << a.mean.size() << " pixels";
   // The scripted run reports its frames and speed at exit.
   EXPECT_NE(r.out.find("view: "), std::string::npos) << r.out;
 }
@@ -163,11 +169,62 @@ TEST(View, HeldKeyInTheWindowMovesTheCamera) {
   EXPECT_EQ(err.find("validation"), std::string::npos) << err;
   render("vulkan", dir / "render.exr");
   RadianceImage moved = readExr(dir / "view.exr"), home = readExr(dir / "render.exr");
-  ASSERT_EQ(moved.mean.size(), home.mean.size());
-  size_t differing = 0;
-  for (size_t i = 0; i < moved.mean.size(); ++i) differing += moved.mean[i] != home.mean[i];
-  EXPECT_GT(differing, moved.mean.size() / 2);
+  EXPECT_GT(differingPixels(moved, home), moved.mean.size() / 2);
 }
+
+// tests/data/anim_trs.gltf (2 s: a moving, a turning and a growing object and a camera that
+// steps up at 1 s) through `command` at 48x48, 4 spp, with `flags`, the image to `out`.
+RunResult runAnimated(const std::string& command, std::vector<std::string> flags, const std::filesystem::path& out) {
+  std::vector<std::string> args = {command, (sourceDirectory() / "tests" / "data" / "anim_trs.gltf").string(),
+                                   "--width", "48", "--height", "48", "--spp", "4", "--seed", "5"};
+  flags.insert(flags.end(), {command == "view" ? "--screenshot" : "-o", out.string()});
+  args.insert(args.end(), flags.begin(), flags.end());
+  RunResult r = runWavepath(args, {}, 300);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("validation"), std::string::npos) << r.err;
+  return r;
+}
+
+// The viewer opens an animated scene on the --time pose over the shutter interval (moving
+// objects blurred), packed as render packs it: the same image bit for bit.
+TEST(View, AnimatedSceneAtATimeMatchesRender) {
+  std::filesystem::path dir = scratchDirectory("view-anim-time");
+  const std::vector<std::string> at = {"--time", "0.5", "--shutter", "0.25"};
+  std::vector<std::string> viewFlags = at;
+  viewFlags.insert(viewFlags.end(), {"--frames", "2", "--frame-budget", "5"});
+  runAnimated("view", viewFlags, dir / "view.exr");
+  runAnimated("render", at, dir / "render.exr");
+  EXPECT_EQ(differingPixels(readExr(dir / "view.exr"), readExr(dir / "render.exr")), 0u);
+}
+
+// --play from 0.5 s: each frame re-poses the scene at the wall-clock time over the shutter
+// and updates it on the GPU; without --loop playback stops at the end (2 s), where the
+// scripted run then reaches --spp. So the image is exactly render's at 2 s, posed and packed
+// from scratch (the camera followed its step at 1 s; no motion is left to blur), and not the
+// 0.5 s pose it opened on.
+void expectPlaybackToEndOnTheLastPose(const std::string& backend) {
+  std::filesystem::path dir = scratchDirectory("view-anim-play-" + backend);
+  const std::vector<std::string> common = {"--shutter", "0.25", "--backend", backend};
+  auto flags = [&](std::vector<std::string> f) {
+    f.insert(f.end(), common.begin(), common.end());
+    return f;
+  };
+  runAnimated("view", flags({"--time", "0.5", "--play", "--frames", "2", "--frame-budget", "5"}), dir / "played.exr");
+  runAnimated("render", flags({"--time", "2"}), dir / "end.exr");
+  runAnimated("render", flags({"--time", "0.5"}), dir / "start.exr");
+  RadianceImage played = readExr(dir / "played.exr");
+  EXPECT_EQ(differingPixels(played, readExr(dir / "end.exr")), 0u);
+  EXPECT_GT(differingPixels(played, readExr(dir / "start.exr")), 0u);
+}
+
+// With --loop playback has no end: the scripted run ends after its frames.
+TEST(View, PlaybackRunsToTheEndOfTheAnimationOnVulkan) {
+  expectPlaybackToEndOnTheLastPose("vulkan");
+  RunResult looped = runAnimated("view", {"--play", "--loop", "--frames", "5"}, scratchDirectory("view-loop") / "x.exr");
+  EXPECT_NE(looped.out.find("view: 5 frames"), std::string::npos) << looped.out;
+}
+
+TEST(View, PlaybackRunsToTheEndOfTheAnimationOnOpenCl) { expectPlaybackToEndOnTheLastPose("opencl"); }
 
 TEST(View, WithoutAWindowSystemPointsToRender) {
   std::vector<std::string> args = {"view", cornellBox().string(), "--frames", "1"};

@@ -158,5 +158,41 @@ TEST(ViewerInput, ScreenshotKeys) {
   EXPECT_TRUE(tracker.takeFrame(0.1).screenshot);
 }
 
+TEST(ViewerInput, SpaceTogglesPlaybackOncePerPress) {
+  InputTracker tracker;
+  tracker.onKey(GLFW_KEY_SPACE, GLFW_PRESS);
+  tracker.onKey(GLFW_KEY_SPACE, GLFW_REPEAT);
+  EXPECT_TRUE(tracker.takeFrame(0.1).togglePlayback);
+  EXPECT_FALSE(tracker.takeFrame(0.1).togglePlayback);
+  tracker.onKey(GLFW_KEY_SPACE, GLFW_RELEASE);
+  EXPECT_FALSE(tracker.takeFrame(0.1).togglePlayback);
+}
+
+// An animated scene camera moves the home: an unmoved view follows it, a moved one stays
+// where the user put it until reset, which goes to the new home.
+TEST(ViewerInput, AnUnmovedViewFollowsTheAnimatedSceneCamera) {
+  InputTracker tracker;
+  CameraController controller(homeCamera(), 1.0f);
+  Camera later = homeCamera();
+  later.position = {0.0f, 1.0f, 5.0f};
+  controller.setHome(later);
+  expectNear(controller.camera().position, later.position);
+
+  tracker.onKey(GLFW_KEY_D, GLFW_PRESS);
+  controller.update(tracker.takeFrame(1.0).camera, 1.0f);
+  tracker.onKey(GLFW_KEY_D, GLFW_RELEASE);
+  expectNear(controller.camera().position, {1.0f, 1.0f, 5.0f});
+  later.position = {0.0f, 2.0f, 5.0f};
+  controller.setHome(later);
+  expectNear(controller.camera().position, {1.0f, 1.0f, 5.0f});
+
+  tracker.onKey(GLFW_KEY_R, GLFW_PRESS);
+  controller.update(tracker.takeFrame(0.1).camera, 1.0f);
+  expectNear(controller.camera().position, later.position);
+  later.position = {0.0f, 3.0f, 5.0f};
+  controller.setHome(later);
+  expectNear(controller.camera().position, later.position);
+}
+
 }  // namespace
 }  // namespace wp

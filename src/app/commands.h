@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/camera_options.h"
+#include "app/pose_uploader.h"
 #include "bvh/gpu_scene.h"
 #include "render/settings.h"
 #include "scene/scene.h"
@@ -46,9 +47,11 @@ void addSceneFlags(CLI::App& command, RenderOptions& options);
 // --validate or WAVEPATH_VALIDATION=1.
 bool validationRequested(const RenderOptions& options);
 
+// A scene as the viewer starts from it, ready to be posed at other times.
 struct PreparedScene {
-  Scene scene;
-  GpuScene gpuScene;
+  Scene loaded;           // as loaded (the rest pose), which every pose is made from; empty without animation
+  Scene scene;            // posed at --time over the shutter interval, with the camera flags applied
+  PoseUploader uploader;  // holds the GPU form of `scene`, and updates it to later poses
 };
 // Loads the scene and sky and fills in the image size the flags left out; throws wp::Error
 // on bad input.
@@ -56,8 +59,8 @@ Scene loadSceneWithSky(RenderOptions& options);
 // The camera's shutter time: --shutter, else the file's camera extras; 0 when neither says.
 // With an animation, a render at a time sees the scene over this interval (motion blur).
 double shutterSeconds(const RenderOptions& options, const Scene& scene);
-// loadSceneWithSky, posed at --time when given (over the shutter interval), packed, with the
-// camera flags applied.
+// loadSceneWithSky, posed at --time when given (over the shutter interval) and uploaded as
+// `render` does it, with the camera flags applied.
 PreparedScene prepareScene(RenderOptions& options);
 
 struct ViewOptions {
@@ -68,6 +71,8 @@ struct ViewOptions {
   std::string windowCapture;   // scripted: write the whole window, panel included, as PNG at exit
   float frameBudgetMs = 33.0f;  // time per displayed frame (path tracing gets what the rest leaves)
   bool hidePanel = false;
+  bool play = false;  // start playing the animation (at --time, else 0)
+  bool loop = false;  // play the animation in a loop; else playback stops at its end
 };
 
 // Adds `view` to the app.

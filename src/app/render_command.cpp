@@ -8,16 +8,16 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "app/backend_factory.h"
 #include "app/commands.h"
 #include "app/frame_sequence.h"
+#include "app/pose_uploader.h"
 #include "app/progress_bar.h"
 #include "bvh/gpu_scene.h"
-#include "bvh/instance_baking.h"
-#include "bvh/scene_update.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "image/image_io.h"
@@ -64,27 +64,6 @@ void printTimings(const RenderStats& stats, const GpuScene& gpuScene, const Scen
   }
   std::printf("peak memory: %.0f MiB\n", peakMemoryMiB());
 }
-
-// The GPU form of each pose of a sequence: the first is packed whole, later ones reuse its
-// bottom-level BVHs (refitted where meshes deform) under a rebuilt top level.
-class PoseUploader {
-public:
-  const GpuScene& gpuSceneOf(const Scene& posed) {
-    Scene baked = bakeSingleUseMeshes(posed);
-    if (!updater_) {
-      updater_.emplace(baked);
-      return updater_->scene();
-    }
-    updated_ = true;
-    return updater_->update(baked);
-  }
-  // The parts of the last update; null while only the first pose was packed.
-  const SceneUpdateTimes* lastUpdate() const { return updated_ ? &updater_->times() : nullptr; }
-
-private:
-  std::optional<SceneUpdater> updater_;
-  bool updated_ = false;
-};
 
 // The frames to render (one, frame 0, when no sequence is asked for); the flags themselves
 // were checked when they were parsed.
@@ -244,12 +223,11 @@ Scene loadSceneWithSky(RenderOptions& o) {
 
 PreparedScene prepareScene(RenderOptions& o) {
   PreparedScene p;
-  p.scene = loadSceneWithSky(o);
-  if (o.time) {
-    p.scene = poseSceneOverShutter(p.scene, *o.time, shutterSeconds(o, p.scene));
-  }
-  p.gpuScene = packScene(bakeSingleUseMeshes(p.scene));
-  applyCameraFlags(o.camera, p.scene.camera, p.gpuScene);
+  Scene loaded = loadSceneWithSky(o);
+  p.scene = o.time ? poseSceneOverShutter(loaded, *o.time, shutterSeconds(o, loaded)) : loaded;
+  applyCameraFlags(o.camera, p.scene.camera, p.uploader.gpuSceneOf(p.scene));
+  // Kept only to pose again: a static scene needs no second copy of its meshes.
+  if (loaded.animation) p.loaded = std::move(loaded);
   return p;
 }
 

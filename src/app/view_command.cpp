@@ -24,6 +24,9 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& v) {
                   "Time per displayed frame in ms; path tracing gets what readback and display leave (at least a "
                   "quarter, and one pass)")
       ->check(CLI::Range(1.0f, 10000.0f));
+  cmd->add_flag("--play", v.play,
+                "Start playing the animation (from --time); a scripted run waits for its end, then reaches --spp");
+  cmd->add_flag("--loop", v.loop, "Play the animation in a loop (the panel's loop box)");
   cmd->add_flag("--hide-panel", v.hidePanel, "Start with the settings panel hidden (F1 toggles it)");
   return cmd;
 }

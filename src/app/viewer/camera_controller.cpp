@@ -35,13 +35,21 @@ void CameraController::setForward(glm::vec3 forward) {
   camera_.up = glm::normalize(glm::cross(right, camera_.forward));
 }
 
+void CameraController::setHome(const Camera& home) {
+  home_ = home;
+  if (atHome_) {
+    camera_ = home;
+    worldUp_ = home.up;
+  }
+}
+
 bool CameraController::update(const CameraInput& in, float pivotDistance) {
-  bool changed = false;
+  bool moved = false;  // by the user, as opposed to a reset
   if (in.reset) {
     camera_ = home_;
+    worldUp_ = home_.up;
     speed_ = homeSpeed_;
     mode_ = CameraMode::Fly;
-    changed = true;
   }
   if (in.toggleOrbit) {
     mode_ = mode_ == CameraMode::Fly ? CameraMode::Orbit : CameraMode::Fly;
@@ -59,7 +67,7 @@ bool CameraController::update(const CameraInput& in, float pivotDistance) {
     }
     if (yaw != 0.0f || pitch != 0.0f) {
       setForward(turn(camera_.forward, yaw, pitch));
-      changed = true;
+      moved = true;
     }
   } else {
     float distance = glm::length(pivot_ - camera_.position);
@@ -73,7 +81,7 @@ bool CameraController::update(const CameraInput& in, float pivotDistance) {
       glm::vec3 forward = turn(camera_.forward, yaw, pitch);
       camera_.position = pivot_ - forward * distance;
       setForward(forward);
-      changed = true;
+      moved = true;
     }
   }
   if (in.move != glm::vec3(0.0f) && in.seconds > 0.0) {
@@ -82,9 +90,10 @@ bool CameraController::update(const CameraInput& in, float pivotDistance) {
                      (speed_ * float(in.seconds));
     camera_.position += step;
     pivot_ += step;
-    changed = true;
+    moved = true;
   }
-  return changed;
+  atHome_ = (atHome_ || in.reset) && !moved;
+  return in.reset || moved;
 }
 
 }  // namespace wp

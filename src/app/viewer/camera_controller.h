@@ -34,6 +34,10 @@ public:
   // accumulation). Entering orbit mode pivots about the point `pivotDistance` ahead.
   bool update(const CameraInput& input, float pivotDistance);
 
+  // The scene's camera moved (it sits on an animated node): reset returns to `home` from now
+  // on, and a view the user has not moved since the start or the last reset follows it.
+  void setHome(const Camera& home);
+
   const Camera& camera() const { return camera_; }
   CameraMode mode() const { return mode_; }
   float speed() const { return speed_; }
@@ -56,6 +60,7 @@ private:
   float homeSpeed_;
   float speed_;
   CameraMode mode_ = CameraMode::Fly;
+  bool atHome_ = true;  // the user has not moved the view since the start or the last reset
   glm::vec3 pivot_{0.0f};
 };
 

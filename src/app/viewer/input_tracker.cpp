@@ -20,6 +20,7 @@ void InputTracker::onKey(int key, int action) {
     case GLFW_KEY_P:
     case GLFW_KEY_F12: pending_.screenshot = true; break;
     case GLFW_KEY_F1: pending_.togglePanel = !pending_.togglePanel; break;
+    case GLFW_KEY_SPACE: pending_.togglePlayback = !pending_.togglePlayback; break;
     default: break;
   }
 }

@@ -11,10 +11,11 @@ struct FrameInput {
   CameraInput camera;
   bool screenshot = false;   // save the display (PNG) and the radiance (EXR)
   bool togglePanel = false;  // show or hide the settings panel
+  bool togglePlayback = false;  // play or pause the animation
 };
 
 // Keys: W/S forward and back, A/D left and right, E/Q up and down, Tab fly/orbit, R reset
-// to the scene's camera, P or F12 screenshot, F1 panel. Mouse: drag with the left or right button to
+// to the scene's camera, P or F12 screenshot, F1 panel, Space play/pause. Mouse: drag with the left or right button to
 // look (fly) or orbit, wheel for speed (fly) or distance (orbit). Codes and actions are
 // GLFW's (GLFW_KEY_*, GLFW_PRESS / GLFW_RELEASE / GLFW_REPEAT, GLFW_MOUSE_BUTTON_*).
 class InputTracker {

@@ -1,4 +1,4 @@
-// The settings panel: statistics, integrator switches, exposure, tone curve, depth of field.
+// The settings panel: statistics, integrator switches, exposure, tone curve, depth of field, animation.
 #include "app/viewer/settings_panel.h"
 
 #include <algorithm>
@@ -7,6 +7,33 @@
 #include <imgui.h>
 
 namespace wp {
+namespace {
+
+void drawAnimationControls(AnimationClock& clock, bool restPose) {
+  ImGui::Separator();
+  if (ImGui::Button(clock.playing() ? "pause" : "play")) {
+    clock.toggle();
+  }
+  ImGui::SameLine();
+  bool loop = clock.loop();
+  if (ImGui::Checkbox("loop", &loop)) {
+    clock.setLoop(loop);
+  }
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80);
+  float speed = float(clock.speed());
+  // Clamped even when typed in (Ctrl+click): the clock needs a speed above 0.
+  if (ImGui::SliderFloat("speed", &speed, 0.1f, 4.0f, "%.2fx",
+                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+    clock.setSpeed(speed);
+  }
+  float time = float(clock.time());
+  if (ImGui::SliderFloat("time", &time, 0.0f, float(clock.duration()), restPose ? "rest pose" : "%.3f s")) {
+    clock.scrub(time);
+  }
+}
+
+}  // namespace
 
 bool drawSettingsPanel(const PanelInfo& info, PanelControls& c) {
   bool restart = false;
@@ -74,7 +101,11 @@ bool drawSettingsPanel(const PanelInfo& info, PanelControls& c) {
     restart |= ImGui::SliderFloat("focus distance", &o.focusDistance, 0.05f, 100.0f, "%.2f",
                                   ImGuiSliderFlags_Logarithmic);
   }
-  ImGui::TextDisabled("WASD/QE move, drag look, Tab orbit, R reset, P save");
+  if (c.clock) {
+    drawAnimationControls(*c.clock, info.restPose);
+  }
+  ImGui::TextDisabled(c.clock ? "WASD/QE move, drag look, Tab orbit, R reset, P save, Space play"
+                              : "WASD/QE move, drag look, Tab orbit, R reset, P save");
   ImGui::End();
   return restart;
 }

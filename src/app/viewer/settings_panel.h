@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/camera_options.h"
+#include "app/viewer/animation_clock.h"
 #include "render/backend.h"
 #include "render/settings.h"
 #include "scene/scene.h"
@@ -26,10 +27,11 @@ struct PanelInfo {
   uint32_t passesPerFrame = 0;
   std::array<double, kKernelCount> stageMs{};  // GPU ms per stage in the last frame
   const char* cameraMode = "fly";
+  bool restPose = false;  // an animated scene still in its rest pose (no time chosen yet)
 };
 
-// What the panel edits. Exposure stops and the tone curve change only the display; the rest
-// restarts the accumulation.
+// What the panel edits. Exposure stops and the tone curve change only the display; the
+// animation clock is the caller's to follow; the rest restarts the accumulation.
 struct PanelControls {
   RenderSettings* settings = nullptr;
   CameraOptics* optics = nullptr;
@@ -37,6 +39,7 @@ struct PanelControls {
   float exposureStops = 0.0f;      // on top of the flags' exposure: x 2^stops
   bool russianRoulette = true;     // off: settings->russianRouletteStart past every bounce
   uint32_t russianRouletteStart = 3;
+  AnimationClock* clock = nullptr;  // null: the scene has no animation (no controls shown)
 };
 
 // Draws the panel into the current ImGui frame. Returns true when a setting that changes the

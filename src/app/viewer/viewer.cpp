@@ -1,11 +1,13 @@
-// `wavepath view`'s frame loop: input, settings panel, progressive path tracing within a time
-// budget per frame, and display through the presenter.
+// `wavepath view`'s frame loop: input, settings panel, animation playback, progressive path
+// tracing within a time budget per frame, and display through the presenter.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #define GLFW_INCLUDE_NONE
@@ -16,15 +18,18 @@
 
 #include "app/backend_factory.h"
 #include "app/commands.h"
+#include "app/viewer/animation_clock.h"
 #include "app/viewer/camera_controller.h"
 #include "app/viewer/input_tracker.h"
 #include "app/viewer/presenter.h"
 #include "app/viewer/settings_panel.h"
 #include "app/viewer/window.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "image/image_io.h"
 #include "render/camera_lens.h"
 #include "render/wavefront.h"
+#include "scene/scene_animation.h"
 
 namespace wp {
 namespace {
@@ -74,15 +79,27 @@ double median(std::vector<double> values) {
 class ViewerLoop {
 public:
   ViewerLoop(ViewOptions& v, PreparedScene& p, Window& window, Backend& backend, Presenter& presenter)
-      : v_(v), scene_(p.scene), gpuScene_(p.gpuScene), window_(window), backend_(backend), presenter_(presenter),
+      : v_(v), loaded_(p.loaded), scene_(p.scene), uploader_(p.uploader), gpuScene_(p.uploader.gpuScene()),
+        window_(window), backend_(backend), presenter_(presenter),
         settings_(v.render.settings), optics_(p.scene.camera.optics),
-        controller_(p.scene.camera, 0.5f * autofocusDistance(p.scene.camera, p.gpuScene)),
-        renderer_(backend, p.scene, p.gpuScene, sizedSettings()) {
+        controller_(p.scene.camera, 0.5f * autofocusDistance(p.scene.camera, gpuScene_)),
+        renderer_(backend, p.scene, gpuScene_, sizedSettings()) {
     controls_.settings = &settings_;
     controls_.optics = &optics_;
     controls_.display = &v_.render.camera;
     controls_.russianRouletteStart = settings_.russianRouletteStart;
     showPanel_ = !v.hidePanel;
+    if (loaded_.animation && loaded_.animation->duration > 0.0) {
+      clock_.emplace(loaded_.animation->duration, v.render.time.value_or(0.0));
+      clock_->setLoop(v.loop);
+      if (v.play) clock_->play();
+      posedTime_ = clock_->time();
+      restPose_ = !v.render.time;
+      shutter_ = shutterSeconds(v.render, loaded_);
+      controls_.clock = &*clock_;
+    } else if (v.play) {
+      note(v.render.scene + " has no animation: --play has nothing to play");
+    }
   }
 
   int run() {
@@ -120,8 +137,8 @@ private:
     return v_.sampleLimit ? settings_.samplesPerPixel : std::numeric_limits<uint32_t>::max();
   }
 
-  // The one place a change reaches the renderer: camera, settings, image size. Animation
-  // hooks in here: update scene_ and gpuScene_, then restart with reloadScene.
+  // The one place a change reaches the renderer: camera, settings, image size, and with
+  // `reloadScene` a new pose of the scene (in scene_ and gpuScene_).
   void restart(bool reloadScene) {
     Camera camera = controller_.camera();
     camera.optics = optics_;
@@ -152,8 +169,13 @@ private:
     FrameInput input = takeInput(seconds);
     bool changed = applyInput(input);
     trace();
-    bool done = v_.frames > 0 && frames_ >= v_.frames && renderer_.samplesPerPixelDone() >= targetForScript();
-    refreshImage(changed || done || input.screenshot || renderer_.samplesPerPixelDone() >= sampleTarget());
+    bool done = scriptDone();
+    // While the animation plays, each pose is shown (and saved) once every pixel has a
+    // sample, never partly traced (a slow device skips times instead; see followClock).
+    bool playing = clock_ && clock_->playing();
+    bool hold = playing && renderer_.samplesPerPixelDone() == 0;
+    refreshImage(changed || done || input.screenshot || playing || renderer_.samplesPerPixelDone() >= sampleTarget(),
+                 hold);
     DisplaySettings display = updatePixels();
     ImGui::Render();
     auto presentStart = Clock::now();
@@ -170,18 +192,41 @@ private:
     return done;
   }
 
-  // Applies the panel, the camera input and the window size; returns whether the view
-  // changed (and the accumulation restarted).
+  // Applies the panel, playback, the camera input and the window size; returns whether the
+  // view changed (and the accumulation restarted).
   bool applyInput(const FrameInput& input) {
     bool changed = showPanel_ && drawSettingsPanel(panelInfo(), controls_);
     if (changed) checkOptics();
+    if (clock_) {
+      if (input.togglePlayback) clock_->toggle();
+      clock_->advance(input.camera.seconds);
+    }
+    bool reposed = followClock();
     float pivot = input.camera.toggleOrbit ? autofocusDistance(scene_.camera, gpuScene_) : 0.0f;
     changed |= controller_.update(input.camera, pivot);
     uint32_t w = 0, h = 0;
     window_.framebufferSize(w, h);
     changed |= w > 0 && h > 0 && (w != settings_.width || h != settings_.height);
-    if (changed) restart(false);
+    changed |= reposed;
+    if (changed) restart(reposed);
     return changed;
+  }
+
+  // Poses the scene at the clock's time when the clock moved since the last pose, over the
+  // camera's shutter as `render --time` does (so motion blur shows), and updates its GPU form
+  // the way an image sequence does. Returns whether it posed; the caller restarts. While
+  // playing, the shown pose first gets a sample in every pixel (and is displayed): where that
+  // takes longer than a frame, playback skips the times in between.
+  bool followClock() {
+    if (!clock_ || clock_->time() == posedTime_) return false;
+    if (clock_->playing() && renderer_.samplesPerPixelDone() == 0) return false;
+    posedTime_ = clock_->time();
+    restPose_ = false;
+    Scene posed = poseSceneOverShutter(loaded_, posedTime_, shutter_);
+    uploader_.gpuSceneOf(posed);  // updates gpuScene_ in place
+    controller_.setHome(posed.camera);
+    scene_ = std::move(posed);
+    return true;
   }
 
   // Path traces for this frame's share of the budget. The budget is the whole frame's: path
@@ -214,15 +259,15 @@ private:
   }
 
   // Reads the image back when passes ran since the last time and either `now` or enough
-  // path tracing went by. The readback costs a fixed time per frame (at 1280x720 on
-  // lavapipe several times the frame budget), so while the view stays still it happens
-  // once the path tracing since the last one took twice as long as it did: it then costs at
-  // most a third of the time, and the window stays responsive.
-  void refreshImage(bool now) {
+  // path tracing went by, unless `hold` keeps the last image. The readback costs a fixed
+  // time per frame (at 1280x720 on lavapipe several times the frame budget), so while the
+  // view stays still it happens once the path tracing since the last one took twice as long
+  // as it did: it then costs at most a third of the time, and the window stays responsive.
+  void refreshImage(bool now, bool hold) {
     tracedSinceRefresh_ += last_.seconds;
     unseenPasses_ |= last_.passes > 0;
     bool due = tracedSinceRefresh_ >= 2.0 * readbackSeconds_;
-    if (!image_.mean.empty() && !(unseenPasses_ && (now || due))) {
+    if (!image_.mean.empty() && (hold || !(unseenPasses_ && (now || due)))) {
       return;
     }
     auto start = Clock::now();
@@ -247,8 +292,14 @@ private:
     return input;
   }
 
-  // A scripted run with --spp reaches it before exiting, whatever --frames says.
-  uint32_t targetForScript() const { return v_.sampleLimit ? settings_.samplesPerPixel : 0u; }
+  // A scripted run ends after --frames frames, once the image has --spp samples. While the
+  // animation plays it waits for the end (then goes on to --spp); a looping one has no end
+  // and would restart the image every frame, so there the frames alone count.
+  bool scriptDone() const {
+    if (v_.frames == 0 || frames_ < v_.frames) return false;
+    if (clock_ && clock_->playing()) return clock_->loop();
+    return renderer_.samplesPerPixelDone() >= (v_.sampleLimit ? settings_.samplesPerPixel : 0u);
+  }
 
   PanelInfo panelInfo() const {
     PanelInfo info;
@@ -267,6 +318,7 @@ private:
     info.passesPerFrame = last_.passes;
     info.stageMs = last_.kernelMs;
     info.cameraMode = controller_.mode() == CameraMode::Fly ? "fly" : "orbit";
+    info.restPose = restPose_;
     return info;
   }
 
@@ -297,8 +349,10 @@ private:
   }
 
   ViewOptions& v_;
-  Scene& scene_;
-  GpuScene& gpuScene_;
+  const Scene& loaded_;  // what every pose is made from
+  Scene& scene_;         // the shown pose; its camera is the controller's
+  PoseUploader& uploader_;
+  const GpuScene& gpuScene_;  // the uploader's, updated in place per pose
   Window& window_;
   Backend& backend_;
   Presenter& presenter_;
@@ -309,6 +363,10 @@ private:
   CameraController controller_;
   WavefrontRenderer renderer_;
   PanelControls controls_;
+  std::optional<AnimationClock> clock_;  // only for a scene with an animation to play
+  double posedTime_ = 0.0;  // the clock's time when scene_ was last posed
+  bool restPose_ = false;   // scene_ is the file's rest pose (no --time, not yet played)
+  double shutter_ = 0.0;    // seconds the camera sees each pose over (motion blur)
   bool showPanel_ = true;
   RadianceImage image_;  // the last image read back
   bool imageFresh_ = false;  // read back since pixels_ were made
