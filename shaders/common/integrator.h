@@ -198,22 +198,19 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
 
   float skyChoice = params.sky.transform.z;
   if (mode != WP_MODE_BSDF && (lightCount > 0u || skyChoice > 0.0f)) {
-    rng = rngNext(rng);
-    float u0 = rngFloat(rng);
-    rng = rngNext(rng);
-    float u1 = rngFloat(rng);
-    rng = rngNext(rng);
-    float u2 = rngFloat(rng);
-    // The sky or the triangles, chosen in proportion to their power (packScene); u0 is
+    RngDraw3 lightDraw = rngFloat3(rng);
+    rng = lightDraw.state;
+    vec3 u = lightDraw.u;
+    // The sky or the triangles, chosen in proportion to their power (packScene); u.x is
     // reused, rescaled, to select the triangle.
     LightSample ls;
-    if (u0 < skyChoice) {
-      ls = sampleEnvironment(WP_ENV_BUFFER_ARGS params.sky, make_vec2(u1, u2));
+    if (u.x < skyChoice) {
+      ls = sampleEnvironment(WP_ENV_BUFFER_ARGS params.sky, make_vec2(u.y, u.z));
       ls.pdf *= skyChoice;
     } else {
-      float u = min((u0 - skyChoice) / (1.0f - skyChoice), 0.99999994f);
+      float select = min((u.x - skyChoice) / (1.0f - skyChoice), 0.99999994f);
       ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position,
-                       make_vec3(u, u1, u2));
+                       make_vec3(select, u.y, u.z));
       ls.pdf *= 1.0f - skyChoice;
     }
     BsdfEval e = noEval();
@@ -239,13 +236,9 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   // From the last vertex a ray is still traced, only to collect emission the light sample
   // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
   // with NEE alone, what only a delta lobe reaches.
-  rng = rngNext(rng);
-  float u0 = rngFloat(rng);
-  rng = rngNext(rng);
-  float u1 = rngFloat(rng);
-  rng = rngNext(rng);
-  float u2 = rngFloat(rng);
-  MaterialSample bs = sampleBsdf(m, woLocal, make_vec3(u0, u1, u2), bsdfFlags);
+  RngDraw3 bsdfDraw = rngFloat3(rng);
+  rng = bsdfDraw.state;
+  MaterialSample bs = sampleBsdf(m, woLocal, bsdfDraw.u, bsdfFlags);
   bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
   if (bounce < maxBounces || mode != WP_MODE_NEE || isDelta) {
     vec3 nextThroughput = throughput * bs.weight;

@@ -1,7 +1,25 @@
-// Names of the wavefront kernels, for timings and messages.
+// Names of the wavefront kernels, for timings and messages, and the scene arrays a backend uploads.
 #include "render/backend.h"
 
+#include "bvh/gpu_scene.h"
+
 namespace wp {
+
+namespace {
+
+template <typename T>
+SceneArray arrayOf(const std::vector<T>& v) {
+  return {v.data(), uint64_t(v.size()) * sizeof(T)};
+}
+
+}  // namespace
+
+std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
+  // In the order of kSceneBindings.
+  return {arrayOf(s.nodes),       arrayOf(s.triangles),      arrayOf(s.instances),      arrayOf(s.planes),
+          arrayOf(s.materials),   arrayOf(s.lights),         arrayOf(s.skyRadiance),    arrayOf(s.skyMarginal),
+          arrayOf(s.skyConditional), arrayOf(s.triangleShading), arrayOf(s.textures), arrayOf(s.texels)};
+}
 
 const char* kernelName(Kernel kernel) {
   switch (kernel) {

@@ -15,6 +15,22 @@ namespace wp {
 
 struct GpuScene;
 
+// The bindings (layout.h) of a packed scene's arrays, in the order sceneArrays lists them.
+inline constexpr std::array<uint32_t, 12> kSceneBindings = {
+    WP_BINDING_NODES,          WP_BINDING_TRIANGLES,       WP_BINDING_INSTANCES,      WP_BINDING_PLANES,
+    WP_BINDING_MATERIALS,      WP_BINDING_LIGHTS,          WP_BINDING_ENV_RADIANCE,   WP_BINDING_ENV_MARGINAL,
+    WP_BINDING_ENV_CONDITIONAL, WP_BINDING_TRIANGLE_SHADING, WP_BINDING_TEXTURES,     WP_BINDING_TEXELS};
+
+// One array of a packed scene as a backend uploads it to kSceneBindings[i].
+struct SceneArray {
+  const void* data = nullptr;
+  uint64_t bytes = 0;
+};
+
+// What a GpuScene puts on the device, the one list both backends upload: entry i is read by
+// the stages through binding kSceneBindings[i].
+std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& scene);
+
 enum class Kernel { Generate, Extend, Shade, Advance, Connect, Accumulate };
 inline constexpr int kKernelCount = 6;
 const char* kernelName(Kernel kernel);

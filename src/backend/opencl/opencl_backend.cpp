@@ -19,11 +19,6 @@ constexpr uint64_t kBytesPerPath =
 
 std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
 
-template <typename T>
-OpenClBuffer uploadVector(cl_context context, const std::vector<T>& data) {
-  return OpenClBuffer(context, CL_MEM_READ_ONLY, data.size() * sizeof(T), data.data());
-}
-
 }  // namespace
 
 OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate)
@@ -104,29 +99,16 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
     }
   }
   cl_context context = context_->context;
-  sceneBuffers_[0] = uploadVector(context, scene.nodes);
-  sceneBuffers_[1] = uploadVector(context, scene.triangles);
-  sceneBuffers_[2] = uploadVector(context, scene.instances);
-  sceneBuffers_[3] = uploadVector(context, scene.planes);
-  sceneBuffers_[4] = uploadVector(context, scene.materials);
-  sceneBuffers_[5] = uploadVector(context, scene.lights);
-  sceneBuffers_[6] = uploadVector(context, scene.skyRadiance);
-  sceneBuffers_[7] = uploadVector(context, scene.skyMarginal);
-  sceneBuffers_[8] = uploadVector(context, scene.skyConditional);
-  sceneBuffers_[9] = uploadVector(context, scene.triangleShading);
-  sceneBuffers_[10] = uploadVector(context, scene.textures);
-  sceneBuffers_[11] = uploadVector(context, scene.texels);
-  const uint32_t bindings[] = {WP_BINDING_NODES,           WP_BINDING_TRIANGLES,      WP_BINDING_INSTANCES,
-                               WP_BINDING_PLANES,          WP_BINDING_MATERIALS,      WP_BINDING_LIGHTS,
-                               WP_BINDING_ENV_RADIANCE,    WP_BINDING_ENV_MARGINAL,   WP_BINDING_ENV_CONDITIONAL,
-                               WP_BINDING_TRIANGLE_SHADING, WP_BINDING_TEXTURES,      WP_BINDING_TEXELS};
-  static_assert(sizeof(bindings) / sizeof(bindings[0]) == std::tuple_size_v<decltype(sceneBuffers_)>);
+  const auto arrays = sceneArrays(scene);
+  for (size_t i = 0; i < arrays.size(); ++i) {
+    sceneBuffers_[i] = OpenClBuffer(context, CL_MEM_READ_ONLY, arrays[i].bytes, arrays[i].data);
+  }
   sceneBytes_ = 0;
   uint64_t largest = 0;
   for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {
     sceneBytes_ += sceneBuffers_[i].size();
     largest = std::max(largest, sceneBuffers_[i].size());
-    bind(bindings[i], sceneBuffers_[i]);
+    bind(kSceneBindings[i], sceneBuffers_[i]);
   }
   checkMemory(sceneBytes_, largest, "scene");
 }

@@ -70,7 +70,7 @@ private:
   bool validate_;
 
   // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
-  std::array<OpenClBuffer, 12> sceneBuffers_;  // in the order of the bindings table in loadScene
+  std::array<OpenClBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
   uint64_t sceneBytes_ = 0;
   OpenClBuffer params_;
   OpenClBuffer rays_;

@@ -75,12 +75,6 @@ VkDescriptorType descriptorType(uint32_t binding) {
 constexpr VkBufferUsageFlags kQueueUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 
-template <typename T>
-void uploadVector(VulkanContext& context, VulkanBuffer& buffer, const std::vector<T>& data) {
-  buffer = VulkanBuffer(context, data.size() * sizeof(T), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
-  buffer.upload(data.data(), data.size() * sizeof(T));
-}
-
 }  // namespace
 
 VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
@@ -221,18 +215,11 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
     }
   }
   motion_ = motion;
-  uploadVector(*context_, sceneBuffers_[0], scene.nodes);
-  uploadVector(*context_, sceneBuffers_[1], scene.triangles);
-  uploadVector(*context_, sceneBuffers_[2], scene.instances);
-  uploadVector(*context_, sceneBuffers_[3], scene.planes);
-  uploadVector(*context_, sceneBuffers_[4], scene.materials);
-  uploadVector(*context_, sceneBuffers_[5], scene.lights);
-  uploadVector(*context_, sceneBuffers_[6], scene.skyRadiance);
-  uploadVector(*context_, sceneBuffers_[7], scene.skyMarginal);
-  uploadVector(*context_, sceneBuffers_[8], scene.skyConditional);
-  uploadVector(*context_, sceneBuffers_[9], scene.triangleShading);
-  uploadVector(*context_, sceneBuffers_[10], scene.textures);
-  uploadVector(*context_, sceneBuffers_[11], scene.texels);
+  const auto arrays = sceneArrays(scene);
+  for (size_t i = 0; i < arrays.size(); ++i) {
+    sceneBuffers_[i] = VulkanBuffer(*context_, arrays[i].bytes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
+    sceneBuffers_[i].upload(arrays[i].data, arrays[i].bytes);
+  }
   if (params_.handle() != VK_NULL_HANDLE) {
     writeDescriptors();
   }
@@ -271,11 +258,17 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
 }
 
 void VulkanBackend::writeDescriptors() {
-  std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers = {
-      &params_,      &sceneBuffers_[0], &sceneBuffers_[1], &sceneBuffers_[2], &sceneBuffers_[3], &sceneBuffers_[4],
-      &sceneBuffers_[5], &rays_,        &hits_,            &shadowRays_,      &pathRadiance_,    &counters_,
-      &accumulation_, &sceneBuffers_[6], &sceneBuffers_[7], &sceneBuffers_[8], &sceneBuffers_[9],
-      &sceneBuffers_[10], &sceneBuffers_[11], &rays_,  &hits_,            &shadowRays_};
+  std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers{};
+  buffers[WP_BINDING_PARAMS] = &params_;
+  buffers[WP_BINDING_RAYS] = buffers[WP_BINDING_RAYS_READ] = &rays_;
+  buffers[WP_BINDING_HITS] = buffers[WP_BINDING_HITS_READ] = &hits_;
+  buffers[WP_BINDING_SHADOW_RAYS] = buffers[WP_BINDING_SHADOW_RAYS_READ] = &shadowRays_;
+  buffers[WP_BINDING_PATH_RADIANCE] = &pathRadiance_;
+  buffers[WP_BINDING_COUNTERS] = &counters_;
+  buffers[WP_BINDING_ACCUM] = &accumulation_;
+  for (size_t i = 0; i < kSceneBindings.size(); ++i) {
+    buffers[kSceneBindings[i]] = &sceneBuffers_[i];
+  }
   for (VkBufferView view : texelViews_) {
     vkDestroyBufferView(context_->device, view, nullptr);
   }
