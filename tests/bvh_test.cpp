@@ -999,7 +999,7 @@ TEST(SceneUpdater, RebuildsOnceSahGrowthPassesTheThreshold) {
 }
 
 // The SAH cost of refitted trees against fresh builds over 100 frames of the deforming grid:
-// refitting only, and rebuilding past each candidate threshold (printed for README.md, where
+// refitting only, and rebuilding past each candidate threshold (printed for docs/animation.md, where
 // kRebuildSahRatio is chosen from it).
 TEST(Refit, SahCostOfRefitVersusRebuildOver100Frames) {
   constexpr int kFrames = 100;

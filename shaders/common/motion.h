@@ -89,8 +89,8 @@ WP_FN GpuInstance instanceWithTransform(GpuInstance inst, AffineRows m) {
 // (the static path reads nothing more), else the record with the interpolated transform.
 // Only builds with WP_MOTION_BLUR defined look at the keys: the backends compile the stages
 // that call this twice and run the build without it where nothing moves, because the branch,
-// untaken but inside the traversal loop, cost still scenes 12% on lavapipe (README, Motion
-// blur). The host code (C++) always has it.
+// untaken but inside the traversal loop, cost still scenes 12% on lavapipe
+// (docs/motion-blur.md). The host code (C++) always has it.
 WP_FN GpuInstance instanceAt(WP_INSTANCE_BUFFER uint i, float u) {
   GpuInstance inst = WP_INSTANCE(i);
 #ifdef WP_MOTION_BLUR
