@@ -14,6 +14,7 @@
 
 #include "bvh/bvh_builder.h"
 #include "bvh/bvh_refit.h"
+#include "bvh/device_buffers.h"
 #include "bvh/gpu_scene.h"
 #include "bvh/scene_update.h"
 #include "bvh/sweep_builder.h"
@@ -334,13 +335,13 @@ TEST(Intersect, PlaneAndSlabs) {
 // ---- packed scenes: traversal against brute force ---------------------------------------
 
 Hit traceClosest(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
-  return wp::gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                               g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
+  return wp::gpu::traceClosest(wp::sceneBuffers(g), g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax,
+                               0.0f);
 }
 
 bool traceAny(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
-  return wp::gpu::traceAny(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                           g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
+  return wp::gpu::traceAny(wp::sceneBuffers(g), g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax,
+                           0.0f);
 }
 
 // Every plane, every instance, every triangle, with the same object-space rays as traverse.h.

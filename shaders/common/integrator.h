@@ -4,9 +4,9 @@
 #ifndef WP_INTEGRATOR_H
 #define WP_INTEGRATOR_H
 
+#include "binding_table.h"
 #include "bsdf.h"
 #include "environment.h"
-#include "layout.h"
 #include "lights.h"
 #include "rng.h"
 #include "sampling.h"
@@ -14,16 +14,6 @@
 #include "texture.h"
 
 WP_BEGIN
-
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SHADING_BUFFERS \
-  WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER WP_ENV_BUFFERS WP_TEXTURE_BUFFERS
-#define WP_SHADING_BUFFER_ARGS \
-  WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG WP_ENV_BUFFER_ARGS WP_TEXTURE_BUFFER_ARGS
-#else
-#define WP_SHADING_BUFFERS
-#define WP_SHADING_BUFFER_ARGS
-#endif
 
 #define WP_SHADE_EXTEND 1u  // ShadeResult.next is a ray to trace
 #define WP_SHADE_SHADOW 2u  // ShadeResult.shadow is a shadow ray to trace
@@ -50,7 +40,7 @@ WP_FN vec3 clampedContribution(RenderParams params, vec3 c) {
 
 // A ray that left the scene sees the sky. Next event estimation samples the sky with
 // probability sky.transform.z, so a BSDF-sampled ray's sky radiance is weighed against that.
-WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray) {
+WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
   ShadeResult r;
   r.flags = 0u;
   vec3 direction = xyz(ray.direction);
@@ -62,11 +52,11 @@ WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray)
     if (mode == WP_MODE_NEE) {
       weight = 0.0f;
     } else if (mode == WP_MODE_MIS) {
-      float skyPdf = skyChoice * environmentPdf(WP_ENV_CDF_BUFFER_ARGS params.sky, direction);
+      float skyPdf = skyChoice * environmentPdf(WP_BUFFERS_ARG params.sky, direction);
       weight = balanceHeuristic(bsdfPdfOfRay, skyPdf);
     }
   }
-  r.radiance = xyz(ray.throughput) * environmentRadiance(WP_ENV_RADIANCE_BUFFER_ARG params.sky, direction) * weight;
+  r.radiance = xyz(ray.throughput) * environmentRadiance(WP_BUFFERS_ARG params.sky, direction) * weight;
   if (ray.state.y > 0u) {
     r.radiance = clampedContribution(params, r.radiance);
   }
@@ -77,18 +67,18 @@ WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray)
 // times COLOR_0 times the texture; metallic and roughness times the texture's blue and
 // green; emission times the emissive texture). Surfaces without TEXCOORD_0 (and spheres and
 // planes) use the constant factors.
-WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
   if (!s.hasUv) {
     return m;
   }
-  vec3 emission = texturedEmission(WP_TEXTURE_BUFFER_ARGS xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
+  vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
   m.emission = make_vec4(emission.x, emission.y, emission.z, m.emission.w);
   if (m.info.y != WP_INVALID) {
-    m.baseColor = m.baseColor * sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.y, s.uv);
+    m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG m.info.y, s.uv);
   }
   if (m.info.z != WP_INVALID) {
-    vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.z, s.uv);
+    vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.z, s.uv);
     m.surface.x *= t.z;
     m.surface.y *= t.y;
   }
@@ -100,11 +90,11 @@ WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit 
 // file's TANGENT or else the triangle's own uv gradient (SurfaceHit), orthogonalized against
 // the interpolated normal. Falls back to the unmapped normal where there is no frame or the
 // result would face away from the geometric front.
-WP_FN vec3 normalMapped(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+WP_FN vec3 normalMapped(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   if (m.info.w == WP_INVALID || !s.hasUv) {
     return s.shadingNormal;
   }
-  vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.w, s.uv);
+  vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.w, s.uv);
   float scale = m.normalMap.x;
   vec3 tangentSpace = make_vec3((2.0f * t.x - 1.0f) * scale, (2.0f * t.y - 1.0f) * scale, 2.0f * t.z - 1.0f);
   vec3 n = s.shadingNormal;
@@ -135,7 +125,7 @@ WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) 
 // Media: a ray that reaches the back side of a surface travelled inside it, so the
 // material's KHR_materials_volume attenuation applies over t (Beer's law). This assumes
 // closed meshes and media that do not nest or overlap.
-WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
+WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
                            uint primitive) {
   ShadeResult r;
   r.flags = 0u;
@@ -152,9 +142,9 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   uint lightSelection = params.shading.z;
 
   float time = ray.throughput.w;
-  SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t, time);
-  GpuMaterial m = texturedMaterial(WP_TEXTURE_BUFFER_ARGS WP_MATERIAL(s.material), s);
-  s.shadingNormal = normalMapped(WP_TEXTURE_BUFFER_ARGS m, s);
+  SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, xyz(ray.origin) + direction * t, time);
+  GpuMaterial m = texturedMaterial(WP_BUFFERS_ARG WP_LOAD(materials, s.material), s);
+  s.shadingNormal = normalMapped(WP_BUFFERS_ARG m, s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
@@ -170,9 +160,9 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       } else if (mode == WP_MODE_MIS) {
         // The selection probability as seen from the previous vertex (the ray's origin),
         // times the chance that next event estimation chose the triangles over the sky.
-        GpuLight light = WP_LIGHT(s.light);
+        GpuLight light = WP_LOAD(lights, s.light);
         float selection = (1.0f - params.sky.transform.z) *
-                          lightSelectionProbability(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, light,
+                          lightSelectionProbability(WP_BUFFERS_ARG lightCount, lightSelection, light,
                                                     xyz(ray.origin));
         weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
       }
@@ -205,11 +195,11 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
     // reused, rescaled, to select the triangle.
     LightSample ls;
     if (u.x < skyChoice) {
-      ls = sampleEnvironment(WP_ENV_BUFFER_ARGS params.sky, make_vec2(u.y, u.z));
+      ls = sampleEnvironment(WP_BUFFERS_ARG params.sky, make_vec2(u.y, u.z));
       ls.pdf *= skyChoice;
     } else {
       float select = min((u.x - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position,
+      ls = sampleLight(WP_BUFFERS_ARG lightCount, lightSelection, s.position,
                        make_vec3(select, u.y, u.z));
       ls.pdf *= 1.0f - skyChoice;
     }

@@ -1,6 +1,9 @@
-// GPU buffer structs, binding indices and workgroup sizes shared by host, GLSL and OpenCL.
-// Every struct is made of 16-byte vec4/uvec4 fields so std430, OpenCL and C++ agree on the
-// layout; the host checks sizes with static_assert (src/render/gpu_layout_check.cpp).
+// GPU buffer structs and workgroup sizes shared by host, GLSL and OpenCL. Every struct is
+// made of 16-byte vec4/uvec4 fields so std430, OpenCL and C++ agree on the layout; the host
+// checks sizes with static_assert (src/render/gpu_layout_check.cpp). A struct that a stage
+// reads from a buffer is a record: its fields are listed once, F(type, name) in
+// WP_FIELDS_<Name>, from which WP_RECORD declares it and the Vulkan stages generate its
+// texel loader (binding_table.h says which buffer holds which record).
 #ifndef WP_LAYOUT_H
 #define WP_LAYOUT_H
 
@@ -10,34 +13,6 @@
 WP_BEGIN
 
 #define WP_WORKGROUP_SIZE 64
-
-// Binding indices (set 0) of the Vulkan stages; OpenCL passes the same buffers as kernel
-// arguments. Read-only data is bound as uniform texel buffers (RGBA32UI): on lavapipe a
-// texel fetch is a SIMD gather while a storage-buffer load is a per-lane scalar loop, and
-// on GPUs it goes through the texture cache. Writes go through storage buffers.
-#define WP_BINDING_PARAMS 0         // RenderParams (uniform)
-#define WP_BINDING_NODES 1          // BvhNode[] (texels): all bottom-level BVHs, then the top level
-#define WP_BINDING_TRIANGLES 2      // GpuTriangle[] (texels) in BVH leaf order
-#define WP_BINDING_INSTANCES 3      // GpuInstance[] (texels)
-#define WP_BINDING_PLANES 4         // GpuPlane[] (texels)
-#define WP_BINDING_MATERIALS 5      // GpuMaterial[] (texels)
-#define WP_BINDING_LIGHTS 6         // GpuLight[] (texels)
-#define WP_BINDING_RAYS 7           // PathRay[2 * maxPaths]: two ping-pong queues (written)
-#define WP_BINDING_HITS 8           // HitRecord[maxPaths] (written)
-#define WP_BINDING_SHADOW_RAYS 9    // ShadowRay[maxPaths] (written)
-#define WP_BINDING_PATH_RADIANCE 10 // vec4[maxPaths]: radiance of each path this pass
-#define WP_BINDING_COUNTERS 11      // QueueCounters
-#define WP_BINDING_ACCUM 12         // vec4[2 * pixels]: sum of radiance, sum of squares
-#define WP_BINDING_ENV_RADIANCE 13  // vec4[] (texels): sky radiance per texel (environment.h)
-#define WP_BINDING_ENV_MARGINAL 14  // float[] (texels): the sky's row distribution
-#define WP_BINDING_ENV_CONDITIONAL 15  // float[] (texels): its column distributions
-#define WP_BINDING_TRIANGLE_SHADING 16  // GpuTriangleShading[] (texels), parallel to the triangles
-#define WP_BINDING_TEXTURES 17      // GpuTexture[] (texels)
-#define WP_BINDING_TEXELS 18        // uint[] (texels): RGBA8 texels of every texture, r in the low byte
-#define WP_BINDING_RAYS_READ 19     // the rays buffer again, as texels (Vulkan only)
-#define WP_BINDING_HITS_READ 20     // the hits buffer again, as texels (Vulkan only)
-#define WP_BINDING_SHADOW_RAYS_READ 21  // the shadow-ray buffer again, as texels (Vulkan only)
-#define WP_BINDING_COUNT 22u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
@@ -54,53 +29,53 @@ WP_BEGIN
 
 #define WP_INVALID 0xffffffffu
 
-// Element access to the read-only scene buffers. C++ and OpenCL index arrays passed as
-// arguments; GLSL (shaders/vulkan/bindings.glsl) fetches texels.
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_NODE(i) nodes[i]
-#define WP_TRIANGLE(i) triangles[i]
-#define WP_INSTANCE(i) instances[i]
-#define WP_PLANE(i) planes[i]
-#define WP_MATERIAL(i) materials[i]
-#define WP_LIGHT(i) lights[i]
-#define WP_TRIANGLE_SHADING(i) triangleShading[i]
-#define WP_TEXTURE(i) textures[i]
-#define WP_TEXEL_WORD(i) texels[i]
-#endif
-
 // BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
 // count 0 is an interior node whose index is `index`; a child with count > 0 is a leaf
 // holding primitives [index, index + count). An empty child has min > max and count 0 and
 // index WP_INVALID. Bottom-level leaves hold triangles, the top level holds instances.
-WP_STRUCT(BvhNode)
-  vec4 leftMin;   // xyz: bounds min; w: asFloat(left index)
-  vec4 leftMax;   // xyz: bounds max; w: asFloat(left count)
-  vec4 rightMin;  // xyz; w: asFloat(right index)
-  vec4 rightMax;  // xyz; w: asFloat(right count)
-WP_STRUCT_END(BvhNode)
+//   leftMin: xyz: bounds min; w: asFloat(left index)
+//   leftMax: xyz: bounds max; w: asFloat(left count)
+//   rightMin: xyz; w: asFloat(right index)
+//   rightMax: xyz; w: asFloat(right count)
+#define WP_FIELDS_BvhNode(F) \
+  F(vec4, leftMin)           \
+  F(vec4, leftMax)           \
+  F(vec4, rightMin)          \
+  F(vec4, rightMax)
+WP_RECORD(BvhNode)
 
 // Triangle in object space, stored in BVH leaf order: 64 bytes.
-WP_STRUCT(GpuTriangle)
-  vec4 v0;     // xyz: vertex 0
-  vec4 edge1;  // xyz: v1 - v0
-  vec4 edge2;  // xyz: v2 - v0
-  uvec4 info;  // x: material index, y: emitter ordinal within its mesh or WP_INVALID
-WP_STRUCT_END(GpuTriangle)
+//   v0: xyz: vertex 0
+//   edge1: xyz: v1 - v0
+//   edge2: xyz: v2 - v0
+//   info: x: material index, y: emitter ordinal within its mesh or WP_INVALID
+#define WP_FIELDS_GpuTriangle(F) \
+  F(vec4, v0)                    \
+  F(vec4, edge1)                 \
+  F(vec4, edge2)                 \
+  F(uvec4, info)
+WP_RECORD(GpuTriangle)
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
 // light samples, for the emissive texture), so the traversal's triangle records stay 64
 // bytes: 128 bytes.
-WP_STRUCT(GpuTriangleShading)
-  vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0, w: u0;
-  vec4 normal1;  // all three normals zero: shade with the geometric normal (flat); w: u1
-  vec4 normal2;  // w: u2
-  vec4 v;        // xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
-  uvec4 colors;  // xyz: COLOR_0 at the three vertices as RGBA8 (linear, r in the low byte);
-                 // white without COLOR_0
-  vec4 tangent0;  // xyz: object-space unit glTF TANGENT at vertex 0, w: bitangent sign (+-1);
-  vec4 tangent1;  // all zero without TANGENT (the frame then comes from the uv gradient)
-  vec4 tangent2;
-WP_STRUCT_END(GpuTriangleShading)
+//   normal0..2: xyz: object-space unit vertex normals (glTF NORMAL), all three zero: shade
+//     with the geometric normal (flat); w: TEXCOORD_0's u at the three vertices
+//   v: xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
+//   colors: xyz: COLOR_0 at the three vertices as RGBA8 (linear, r in the low byte); white
+//     without COLOR_0
+//   tangent0..2: xyz: object-space unit glTF TANGENTs, w: bitangent sign (+-1); all zero
+//     without TANGENT (the frame then comes from the uv gradient)
+#define WP_FIELDS_GpuTriangleShading(F) \
+  F(vec4, normal0)                      \
+  F(vec4, normal1)                      \
+  F(vec4, normal2)                      \
+  F(vec4, v)                            \
+  F(uvec4, colors)                      \
+  F(vec4, tangent0)                     \
+  F(vec4, tangent1)                     \
+  F(vec4, tangent2)
+WP_RECORD(GpuTriangleShading)
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
 #define WP_TEXTURE_WRAP_REPEAT 0u
@@ -110,20 +85,23 @@ WP_STRUCT_END(GpuTriangleShading)
 #define WP_TEXTURE_NEAREST 32u  // nearest texel instead of bilinear
 
 // A texture's header: 16 bytes.
-WP_STRUCT(GpuTexture)
-  uvec4 info;  // x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
-WP_STRUCT_END(GpuTexture)
+//   info: x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
+#define WP_FIELDS_GpuTexture(F) \
+  F(uvec4, info)
+WP_RECORD(GpuTexture)
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
-WP_STRUCT(GpuInstance)
-  vec4 worldToObject0;  // rows of the 3x4 world-to-object matrix (at shutter open if it moves)
-  vec4 worldToObject1;
-  vec4 worldToObject2;
-  uvec4 info;  // x: WP_INSTANCE_*, y: BVH root node (mesh) or material (sphere),
-               // z: first light index of this instance's emissive triangles (WP_INVALID:
-               // none sampled), w: WP_INVALID if it stands still, else the index of its
-               // two motion keys in the instance buffer (motion.h)
-WP_STRUCT_END(GpuInstance)
+//   worldToObject0..2: rows of the 3x4 world-to-object matrix (at shutter open if it moves)
+//   info: x: WP_INSTANCE_*, y: BVH root node (mesh) or material (sphere), z: first light
+//     index of this instance's emissive triangles (WP_INVALID: none sampled), w: WP_INVALID
+//     if it stands still, else the index of its two motion keys in the instance buffer
+//     (motion.h)
+#define WP_FIELDS_GpuInstance(F) \
+  F(vec4, worldToObject0)        \
+  F(vec4, worldToObject1)        \
+  F(vec4, worldToObject2)        \
+  F(uvec4, info)
+WP_RECORD(GpuInstance)
 
 // A moving instance's placement at shutter open and at shutter close is kept as two motion
 // keys, stored after the placed instances in the instance buffer in GpuInstance records (so
@@ -134,43 +112,56 @@ WP_STRUCT_END(GpuInstance)
 #define WP_MOTION_KEY_MATRIX 1u
 
 // Infinite plane dot(n, p) = d, 32 bytes.
-WP_STRUCT(GpuPlane)
-  vec4 normalDistance;  // xyz: unit normal, w: d
-  uvec4 info;           // x: material index
-WP_STRUCT_END(GpuPlane)
+//   normalDistance: xyz: unit normal, w: d
+//   info: x: material index
+#define WP_FIELDS_GpuPlane(F) \
+  F(vec4, normalDistance)     \
+  F(uvec4, info)
+WP_RECORD(GpuPlane)
 
 // GpuMaterial.info.x: which BSDF the material has.
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
 
 // A surface material, 112 bytes.
-WP_STRUCT(GpuMaterial)
-  vec4 baseColor;    // rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
-  vec4 emission;     // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
-  vec4 surface;      // x: metallic, y: perceptual roughness, z: ior, w: transmission
-  vec4 attenuation;  // rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
-                     // (WP_FLT_MAX: no absorption)
-  uvec4 info;        // x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness
-                     // texture, w: normal texture (WP_INVALID: none)
-  vec4 normalMap;    // x: the normal texture's scale, yzw: unused
-  uvec4 emissiveMap;  // x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none),
-                      // yzw: unused
-WP_STRUCT_END(GpuMaterial)
+//   baseColor: rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
+//   emission: rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
+//   surface: x: metallic, y: perceptual roughness, z: ior, w: transmission
+//   attenuation: rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
+//     (WP_FLT_MAX: no absorption)
+//   info: x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness texture, w: normal
+//     texture (WP_INVALID: none)
+//   normalMap: x: the normal texture's scale, yzw: unused
+//   emissiveMap: x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none), yzw:
+//     unused
+#define WP_FIELDS_GpuMaterial(F) \
+  F(vec4, baseColor)             \
+  F(vec4, emission)              \
+  F(vec4, surface)               \
+  F(vec4, attenuation)           \
+  F(uvec4, info)                 \
+  F(vec4, normalMap)             \
+  F(uvec4, emissiveMap)
+WP_RECORD(GpuMaterial)
 
 // Emissive triangle in world space, with its alias-table entry for power-proportional
 // selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else
 // take alias), 80 bytes.
-WP_STRUCT(GpuLight)
-  vec4 v0;        // xyz: vertex 0, w: area
-  vec4 edge1;     // xyz: v1 - v0, w: probability of selecting this light
-  vec4 edge2;     // xyz: v2 - v0, w: alias threshold in [0, 1]
-  vec4 emission;  // rgb: radiance (the material's factor), w: luminance of the mean emitted
-                  // radiance over the triangle (texture included), its selection weight
-  uvec4 info;     // x: alias index, y: 1 if it emits on both sides (else the front only,
-                  // the side of cross(edge1, edge2)), z: its GpuTriangleShading (the
-                  // vertices in the same order as v0, edge1, edge2), w: emissive texture
-                  // (WP_INVALID: none)
-WP_STRUCT_END(GpuLight)
+//   v0: xyz: vertex 0, w: area
+//   edge1: xyz: v1 - v0, w: probability of selecting this light
+//   edge2: xyz: v2 - v0, w: alias threshold in [0, 1]
+//   emission: rgb: radiance (the material's factor), w: luminance of the mean emitted
+//     radiance over the triangle (texture included), its selection weight
+//   info: x: alias index, y: 1 if it emits on both sides (else the front only, the side of
+//     cross(edge1, edge2)), z: its GpuTriangleShading (the vertices in the same order as v0,
+//     edge1, edge2), w: emissive texture (WP_INVALID: none)
+#define WP_FIELDS_GpuLight(F) \
+  F(vec4, v0)                 \
+  F(vec4, edge1)              \
+  F(vec4, edge2)              \
+  F(vec4, emission)           \
+  F(uvec4, info)
+WP_RECORD(GpuLight)
 
 // Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
 WP_STRUCT(GpuEnvironment)
@@ -193,26 +184,34 @@ WP_STRUCT(RenderParams)
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
-WP_STRUCT(PathRay)
-  vec4 origin;      // xyz; w: asFloat(path slot in this pass)
-  vec4 direction;   // xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
-  vec4 throughput;  // rgb; w: the path's shutter time in [0, 1) (motion blur)
-  uvec4 state;      // x: RNG state, y: bounce of the vertex this ray will hit, z, w: unused
-WP_STRUCT_END(PathRay)
+//   origin: xyz; w: asFloat(path slot in this pass)
+//   direction: xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
+//   throughput: rgb; w: the path's shutter time in [0, 1) (motion blur)
+//   state: x: RNG state, y: bounce of the vertex this ray will hit, z, w: unused
+#define WP_FIELDS_PathRay(F) \
+  F(vec4, origin)            \
+  F(vec4, direction)         \
+  F(vec4, throughput)        \
+  F(uvec4, state)
+WP_RECORD(PathRay)
 
 // Closest hit of the PathRay at the same queue position: 16 bytes.
-WP_STRUCT(HitRecord)
-  uvec4 hit;  // x: asUint(t) (WP_INVALID: miss), y: instance or plane index | WP_HIT_PLANE,
-              // z: primitive (global triangle index), w: unused
-WP_STRUCT_END(HitRecord)
+//   hit: x: asUint(t) (WP_INVALID: miss), y: instance or plane index | WP_HIT_PLANE, z:
+//     primitive (global triangle index), w: unused
+#define WP_FIELDS_HitRecord(F) \
+  F(uvec4, hit)
+WP_RECORD(HitRecord)
 #define WP_HIT_PLANE 0x80000000u
 
 // Next-event-estimation shadow ray: 48 bytes.
-WP_STRUCT(ShadowRay)
-  vec4 origin;        // xyz; w: asFloat(path slot)
-  vec4 direction;     // xyz: unit; w: distance to the light sample (exclusive)
-  vec4 contribution;  // rgb: radiance added to the path if unoccluded; w: the path's shutter time
-WP_STRUCT_END(ShadowRay)
+//   origin: xyz; w: asFloat(path slot)
+//   direction: xyz: unit; w: distance to the light sample (exclusive)
+//   contribution: rgb: radiance added to the path if unoccluded; w: the path's shutter time
+#define WP_FIELDS_ShadowRay(F) \
+  F(vec4, origin)              \
+  F(vec4, direction)           \
+  F(vec4, contribution)
+WP_RECORD(ShadowRay)
 
 // Queue sizes and indirect dispatch arguments, written on the GPU. Kernels address it as a
 // flat uint array (atomics need a plain uint lvalue) through the word indices below.

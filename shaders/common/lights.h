@@ -3,26 +3,12 @@
 #ifndef WP_LIGHTS_H
 #define WP_LIGHTS_H
 
-#include "layout.h"
+#include "binding_table.h"
 #include "sampling.h"
 #include "surface.h"
 #include "texture.h"
 
 WP_BEGIN
-
-// The light buffer, and what a light sample reads to evaluate an emissive texture: the
-// triangles' texture coordinates and the textures.
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_LIGHT_BUFFER WP_GLOBAL_PTR(GpuLight) lights,
-#define WP_LIGHT_BUFFER_ARG lights,
-#define WP_LIGHT_TEXTURE_BUFFERS WP_GLOBAL_PTR(GpuTriangleShading) triangleShading, WP_TEXTURE_BUFFERS
-#define WP_LIGHT_TEXTURE_BUFFER_ARGS triangleShading, WP_TEXTURE_BUFFER_ARGS
-#else
-#define WP_LIGHT_BUFFER
-#define WP_LIGHT_BUFFER_ARG
-#define WP_LIGHT_TEXTURE_BUFFERS
-#define WP_LIGHT_TEXTURE_BUFFER_ARGS
-#endif
 
 WP_STRUCT(LightSample)
   vec3 direction;  // unit, from the shading point towards the sampled point
@@ -38,10 +24,10 @@ WP_FN vec3 emittedRadiance(vec3 emission, bool doubleSided, vec3 lightNormal, ve
 }
 
 // Index of the light chosen by u in [0, 1) from the alias table (GpuLight in layout.h).
-WP_FN uint selectLight(WP_LIGHT_BUFFER uint lightCount, float u) {
+WP_FN uint selectLight(WP_BUFFERS uint lightCount, float u) {
   float scaled = u * toFloat(lightCount);
   uint i = min(toUint(scaled), lightCount - 1u);
-  GpuLight candidate = WP_LIGHT(i);
+  GpuLight candidate = WP_LOAD(lights, i);
   return (scaled - toFloat(i)) < candidate.edge2.w ? i : candidate.info.x;
 }
 
@@ -54,7 +40,7 @@ WP_FN float lightPdf(GpuLight light, float selection, float distanceSquared, flo
 
 // A point uniform on the area of `light`, seen from `position` (selection not included),
 // with the emission there: the emissive texture at the point's interpolated TEXCOORD_0.
-WP_FN LightSample sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFERS GpuLight light, vec3 position, vec2 u) {
+WP_FN LightSample sampleLightTriangle(WP_BUFFERS GpuLight light, vec3 position, vec2 u) {
   vec2 b = sampleUniformTriangle(u);
   vec3 e1 = make_vec3(light.edge1.x, light.edge1.y, light.edge1.z);
   vec3 e2 = make_vec3(light.edge2.x, light.edge2.y, light.edge2.z);
@@ -69,8 +55,8 @@ WP_FN LightSample sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFERS GpuLight light, v
   s.pdf = s.distance > 0.0f ? areaToSolidAnglePdf(1.0f / light.v0.w, distanceSquared, cosAtLight) : 0.0f;
   vec3 emission = make_vec3(light.emission.x, light.emission.y, light.emission.z);
   if (light.info.w != WP_INVALID) {
-    GpuTriangleShading shading = WP_TRIANGLE_SHADING(light.info.z);
-    emission = texturedEmission(WP_TEXTURE_BUFFER_ARGS emission, light.info.w, hasUv(shading), uvAt(shading, b));
+    GpuTriangleShading shading = WP_LOAD(triangleShading, light.info.z);
+    emission = texturedEmission(WP_BUFFERS_ARG emission, light.info.w, hasUv(shading), uvAt(shading, b));
   }
   s.radiance = emittedRadiance(emission, light.info.y != 0u, n, -s.direction);
   return s;
@@ -110,21 +96,21 @@ WP_FN float solidAngleWeight(GpuLight light, vec3 position) {
   return triangleSolidAngle(a, a + e1, a + e2) * light.emission.w;
 }
 
-WP_FN float solidAngleWeightSum(WP_LIGHT_BUFFER uint lightCount, vec3 position) {
+WP_FN float solidAngleWeightSum(WP_BUFFERS uint lightCount, vec3 position) {
   float sum = 0.0f;
   for (uint i = 0u; i < lightCount; ++i) {
-    sum += solidAngleWeight(WP_LIGHT(i), position);
+    sum += solidAngleWeight(WP_LOAD(lights, i), position);
   }
   return sum;
 }
 
 // Probability that `light` is selected from `position` under `selection` (WP_LIGHT_SELECTION_*).
-WP_FN float lightSelectionProbability(WP_LIGHT_BUFFER uint lightCount, uint selection, GpuLight light,
+WP_FN float lightSelectionProbability(WP_BUFFERS uint lightCount, uint selection, GpuLight light,
                                       vec3 position) {
   if (selection != WP_LIGHT_SELECTION_SOLID_ANGLE) {
     return light.edge1.w;
   }
-  float sum = solidAngleWeightSum(WP_LIGHT_BUFFER_ARG lightCount, position);
+  float sum = solidAngleWeightSum(WP_BUFFERS_ARG lightCount, position);
   return sum > 0.0f ? solidAngleWeight(light, position) / sum : 0.0f;
 }
 
@@ -136,15 +122,15 @@ WP_STRUCT_END(LightChoice)
 // The light that u in [0, 1) picks with probability proportional to solidAngleWeight: the
 // last light with a positive weight whose running sum so far is at most u * sum, i.e.
 // whose interval of the sum holds u * sum (rounding above the sum falls to the last one).
-WP_FN LightChoice selectLightBySolidAngle(WP_LIGHT_BUFFER uint lightCount, vec3 position, float u) {
-  float sum = solidAngleWeightSum(WP_LIGHT_BUFFER_ARG lightCount, position);
+WP_FN LightChoice selectLightBySolidAngle(WP_BUFFERS uint lightCount, vec3 position, float u) {
+  float sum = solidAngleWeightSum(WP_BUFFERS_ARG lightCount, position);
   float target = u * sum;
   LightChoice choice;
   choice.index = WP_INVALID;
   choice.probability = 0.0f;
   float running = 0.0f;
   for (uint i = 0u; i < lightCount; ++i) {
-    float w = solidAngleWeight(WP_LIGHT(i), position);
+    float w = solidAngleWeight(WP_LOAD(lights, i), position);
     if (w > 0.0f && running <= target) {
       choice.index = i;
       choice.probability = w / sum;
@@ -156,14 +142,14 @@ WP_FN LightChoice selectLightBySolidAngle(WP_LIGHT_BUFFER uint lightCount, vec3 
 
 // Chooses a light (by power through the alias table, or by solid angle) and a point on it:
 // u.x selects, (u.y, u.z) place the point.
-WP_FN LightSample sampleLight(WP_LIGHT_BUFFER WP_LIGHT_TEXTURE_BUFFERS uint lightCount, uint selection, vec3 position,
+WP_FN LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection, vec3 position,
                               vec3 u) {
   LightChoice choice;
   if (selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {
-    choice = selectLightBySolidAngle(WP_LIGHT_BUFFER_ARG lightCount, position, u.x);
+    choice = selectLightBySolidAngle(WP_BUFFERS_ARG lightCount, position, u.x);
   } else {
-    choice.index = selectLight(WP_LIGHT_BUFFER_ARG lightCount, u.x);
-    choice.probability = WP_LIGHT(choice.index).edge1.w;
+    choice.index = selectLight(WP_BUFFERS_ARG lightCount, u.x);
+    choice.probability = WP_LOAD(lights, choice.index).edge1.w;
   }
   LightSample s;
   if (choice.index == WP_INVALID) {
@@ -173,7 +159,7 @@ WP_FN LightSample sampleLight(WP_LIGHT_BUFFER WP_LIGHT_TEXTURE_BUFFERS uint ligh
     s.pdf = 0.0f;
     return s;
   }
-  s = sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFER_ARGS WP_LIGHT(choice.index), position, make_vec2(u.y, u.z));
+  s = sampleLightTriangle(WP_BUFFERS_ARG WP_LOAD(lights, choice.index), position, make_vec2(u.y, u.z));
   s.pdf *= choice.probability;
   return s;
 }

@@ -3,15 +3,8 @@
 #ifndef WP_MOTION_H
 #define WP_MOTION_H
 
-#include "layout.h"
+#include "binding_table.h"
 
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_INSTANCE_BUFFER WP_GLOBAL_PTR(GpuInstance) instances,
-#define WP_INSTANCE_BUFFER_ARG instances,
-#else
-#define WP_INSTANCE_BUFFER
-#define WP_INSTANCE_BUFFER_ARG
-#endif
 
 WP_BEGIN
 
@@ -91,11 +84,12 @@ WP_FN GpuInstance instanceWithTransform(GpuInstance inst, AffineRows m) {
 // that call this twice and run the build without it where nothing moves, because the branch,
 // untaken but inside the traversal loop, cost still scenes 12% on lavapipe
 // (docs/motion-blur.md). The host code (C++) always has it.
-WP_FN GpuInstance instanceAt(WP_INSTANCE_BUFFER uint i, float u) {
-  GpuInstance inst = WP_INSTANCE(i);
+WP_FN GpuInstance instanceAt(WP_BUFFERS uint i, float u) {
+  GpuInstance inst = WP_LOAD(instances, i);
 #ifdef WP_MOTION_BLUR
   if (inst.info.w != WP_INVALID) {
-    inst = instanceWithTransform(inst, objectToWorldAt(WP_INSTANCE(inst.info.w), WP_INSTANCE(inst.info.w + 1u), u));
+    inst = instanceWithTransform(
+        inst, objectToWorldAt(WP_LOAD(instances, inst.info.w), WP_LOAD(instances, inst.info.w + 1u), u));
   }
 #endif
   return inst;

@@ -16,6 +16,7 @@ typedef uint4 uvec4;
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;
 #define WP_GLOBAL_PTR(type) __global const type*
+#define WP_GLOBAL_MUTABLE_PTR(type) __global type*
 
 #define make_vec2(x, y) ((float2)((x), (y)))
 #define make_vec3(x, y, z) ((float3)((x), (y), (z)))

@@ -28,6 +28,7 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_STRUCT_END(name) };
 // Pointer to device-global memory in function parameters (GLSL reads buffers as globals).
 #define WP_GLOBAL_PTR(type) const type*
+#define WP_GLOBAL_MUTABLE_PTR(type) type*
 
 #define make_vec2(x, y) vec2((x), (y))
 #define make_vec3(x, y, z) vec3((x), (y), (z))

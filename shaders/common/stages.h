@@ -4,8 +4,8 @@
 #ifndef WP_STAGES_H
 #define WP_STAGES_H
 
+#include "binding_table.h"
 #include "integrator.h"
-#include "layout.h"
 #include "rng.h"
 #include "thin_lens.h"
 #include "traverse.h"
@@ -79,8 +79,8 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
 WP_FN uint pathSlot(vec4 origin) { return asUint(origin.w); }
 
 // Extend: the closest hit of `ray`, as shade reads it.
-WP_FN HitRecord extendRay(WP_SCENE_BUFFERS RenderParams params, PathRay ray) {
-  Hit h = traceClosest(WP_SCENE_BUFFER_ARGS params.counts.y, params.counts.x, xyz(ray.origin), xyz(ray.direction),
+WP_FN HitRecord extendRay(WP_BUFFERS RenderParams params, PathRay ray) {
+  Hit h = traceClosest(WP_BUFFERS_ARG params.counts.y, params.counts.x, xyz(ray.origin), xyz(ray.direction),
                        WP_FLT_MAX, ray.throughput.w);
   HitRecord record;
   record.hit = make_uvec4(h.instance == WP_INVALID ? WP_INVALID : asUint(h.t), h.instance, h.primitive, 0u);
@@ -88,14 +88,14 @@ WP_FN HitRecord extendRay(WP_SCENE_BUFFERS RenderParams params, PathRay ray) {
 }
 
 // Shade: the vertex `ray` reached (or the sky it left to), from its hit record.
-WP_FN ShadeResult shadePath(WP_SHADING_BUFFERS RenderParams params, PathRay ray, uvec4 hit) {
-  return hit.x == WP_INVALID ? shadeMiss(WP_SHADING_BUFFER_ARGS params, ray)
-                             : shadeHit(WP_SHADING_BUFFER_ARGS params, ray, asFloat(hit.x), hit.y, hit.z);
+WP_FN ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, uvec4 hit) {
+  return hit.x == WP_INVALID ? shadeMiss(WP_BUFFERS_ARG params, ray)
+                             : shadeHit(WP_BUFFERS_ARG params, ray, asFloat(hit.x), hit.y, hit.z);
 }
 
 // Connect: whether nothing blocks the shadow ray before its light sample.
-WP_FN bool shadowRayUnoccluded(WP_SCENE_BUFFERS RenderParams params, ShadowRay s) {
-  return !traceAny(WP_SCENE_BUFFER_ARGS params.counts.y, params.counts.x, xyz(s.origin), xyz(s.direction),
+WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
+  return !traceAny(WP_BUFFERS_ARG params.counts.y, params.counts.x, xyz(s.origin), xyz(s.direction),
                    s.direction.w, s.contribution.w);
 }
 

@@ -3,18 +3,11 @@
 #ifndef WP_SURFACE_H
 #define WP_SURFACE_H
 
-#include "layout.h"
+#include "binding_table.h"
 #include "motion.h"
 
 WP_BEGIN
 
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuTriangle) triangles, WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes, WP_GLOBAL_PTR(GpuTriangleShading) triangleShading,
-#define WP_SURFACE_BUFFER_ARGS triangles, instances, planes, triangleShading,
-#else
-#define WP_SURFACE_BUFFERS
-#define WP_SURFACE_BUFFER_ARGS
-#endif
 
 WP_STRUCT(SurfaceHit)
   vec3 position;
@@ -92,7 +85,7 @@ WP_FN bool hasUv(GpuTriangleShading shading) { return shading.v.w != 0.0f; }
 
 // `instanceField` and `primitive` are HitRecord.hit.y and .z of a hit (not a miss) at the
 // normalized shutter time `time` the ray was traced at (moving instances are placed then).
-WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
+WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
   SurfaceHit s;
   s.position = position;
   s.light = WP_INVALID;
@@ -102,25 +95,25 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   s.tangent = make_vec3(1.0f, 0.0f, 0.0f);
   s.bitangent = make_vec3(0.0f, 1.0f, 0.0f);
   if ((instanceField & WP_HIT_PLANE) != 0u) {
-    GpuPlane plane = WP_PLANE(instanceField & ~WP_HIT_PLANE);
+    GpuPlane plane = WP_LOAD(planes, instanceField & ~WP_HIT_PLANE);
     s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
     s.shadingNormal = s.normal;
     s.material = plane.info.x;
     return s;
   }
-  GpuInstance inst = instanceAt(WP_INSTANCE_BUFFER_ARG instanceField, time);
+  GpuInstance inst = instanceAt(WP_BUFFERS_ARG instanceField, time);
   if (inst.info.x == WP_INSTANCE_SPHERE) {
     s.normal = normalToWorld(inst, pointToObject(inst, position));
     s.shadingNormal = s.normal;
     s.material = inst.info.y;
     return s;
   }
-  GpuTriangle tri = WP_TRIANGLE(primitive);
+  GpuTriangle tri = WP_LOAD(triangles, primitive);
   vec3 e1 = make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z);
   vec3 e2 = make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z);
   s.normal = normalToWorld(inst, cross(e1, e2));
   s.shadingNormal = s.normal;
-  GpuTriangleShading shading = WP_TRIANGLE_SHADING(primitive);
+  GpuTriangleShading shading = WP_LOAD(triangleShading, primitive);
   vec3 n0 = make_vec3(shading.normal0.x, shading.normal0.y, shading.normal0.z);
   vec3 n1 = make_vec3(shading.normal1.x, shading.normal1.y, shading.normal1.z);
   vec3 n2 = make_vec3(shading.normal2.x, shading.normal2.y, shading.normal2.z);

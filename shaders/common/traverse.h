@@ -1,23 +1,11 @@
 // Closest-hit and any-hit traversal of the two-level BVH: a top level over instances, one
-// bottom level per mesh, then the planes. Buffers are described in layout.h.
+// bottom level per mesh, then the planes. Buffers are described in binding_table.h.
 #ifndef WP_TRAVERSE_H
 #define WP_TRAVERSE_H
 
+#include "binding_table.h"
 #include "intersect.h"
-#include "layout.h"
 #include "motion.h"
-
-// Scene elements are read through WP_NODE(i) and friends (layout.h): C++ and OpenCL index the
-// arrays passed as the leading arguments, GLSL fetches from texel buffers it declares.
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SCENE_BUFFERS                                                               \
-  WP_GLOBAL_PTR(BvhNode) nodes, WP_GLOBAL_PTR(GpuTriangle) triangles,                \
-      WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes,
-#define WP_SCENE_BUFFER_ARGS nodes, triangles, instances, planes,
-#else
-#define WP_SCENE_BUFFERS
-#define WP_SCENE_BUFFER_ARGS
-#endif
 
 // Each level is built no deeper than WP_BVH_MAX_DEPTH, and a traversal pushes at most one
 // entry per level it descends (plus two while a bottom-level lane holds a postponed leaf),
@@ -93,7 +81,7 @@ WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
 // deepest nesting any lane reached, and a node visit cost as much as ten triangle tests.
 // The bottom level runs inside a top-level leaf and stacks its entries above the top
 // level's in the same stack.
-WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
+WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
                      float tMax, float time, bool anyHit) {
   Hit hit;
   hit.t = tMax;
@@ -101,7 +89,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
   hit.primitive = WP_INVALID;
   // Planes first: a near plane shortens every box test that follows.
   for (uint i = 0u; i < planeCount; ++i) {
-    vec4 plane = WP_PLANE(i).normalDistance;
+    vec4 plane = WP_LOAD(planes, i).normalDistance;
     float t = intersectPlane(make_vec3(plane.x, plane.y, plane.z), plane.w, origin, direction, hit.t);
     if (t < hit.t) {
       hit.t = t;
@@ -118,7 +106,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
   uint entry = packEntry(tlasRoot, 0u);
   for (;;) {
     if (entryCount(entry) == 0u) {
-      ChildHits c = intersectChildren(WP_NODE(entryIndex(entry)), origin, invDir, hit.t);
+      ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
       if (c.count == 2u) {
         stack[sp] = packEntry(c.children.y, c.children.w);
         ++sp;
@@ -130,7 +118,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
     } else {
       // A top-level leaf holds one instance (GpuScene packs one per leaf).
       uint i = entryIndex(entry);
-      GpuInstance inst = instanceAt(WP_INSTANCE_BUFFER_ARG i, time);
+      GpuInstance inst = instanceAt(WP_BUFFERS_ARG i, time);
       vec3 o = instanceRayOrigin(inst, origin);
       vec3 d = instanceRayDirection(inst, direction);
       if (inst.info.x == WP_INSTANCE_SPHERE) {
@@ -150,7 +138,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
           // of the subgroup holds one, so that node visits and leaf tests run in separate
           // SIMD iterations (Aila & Laine 2009, "while-while" with postponed leaves).
           while (node != WP_INVALID) {
-            ChildHits b = intersectChildren(WP_NODE(node), o, objectInvDir, hit.t);
+            ChildHits b = intersectChildren(WP_LOAD(nodes, node), o, objectInvDir, hit.t);
             uint nearEntry = packEntry(b.children.x, b.children.z);
             if (b.count == 2u) {
               stack[sp] = packEntry(b.children.y, b.children.w);
@@ -189,7 +177,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
             uint count = entryCount(leaf);
             for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
               uint j = first + (k < count ? k : 0u);
-              GpuTriangle tri = WP_TRIANGLE(j);
+              GpuTriangle tri = WP_LOAD(triangles, j);
               float t = intersectTriangle(o, d, make_vec3(tri.v0.x, tri.v0.y, tri.v0.z),
                                           make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z),
                                           make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z), hit.t);
@@ -234,15 +222,15 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
 // Closest hit at 0 < t < tMax at normalized shutter time `time` in [0, 1] (which only moving
 // instances see). Requires a non-zero direction and a scene packed by wp::packScene
 // (tlasRoot = GpuScene::tlasRoot, planeCount = its number of planes).
-WP_FN Hit traceClosest(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
+WP_FN Hit traceClosest(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
                        float time) {
-  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, time, false);
+  return traceScene(WP_BUFFERS_ARG tlasRoot, planeCount, origin, direction, tMax, time, false);
 }
 
 // Whether anything lies at 0 < t < tMax (shadow rays). Same requirements as traceClosest.
-WP_FN bool traceAny(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
+WP_FN bool traceAny(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
                     float time) {
-  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, time, true).instance !=
+  return traceScene(WP_BUFFERS_ARG tlasRoot, planeCount, origin, direction, tMax, time, true).instance !=
          WP_INVALID;
 }
 

@@ -8,7 +8,8 @@ WP_KERNEL void connect(WP_KERNEL_ARGS) {
     return;
   }
   ShadowRay s = shadowRays[i];
-  if (shadowRayUnoccluded(WP_SCENE_BUFFER_ARGS *paramsBuffer, s)) {
+  DeviceBuffers buffers = WP_KERNEL_BUFFERS;
+  if (shadowRayUnoccluded(buffers, *paramsBuffer, s)) {
     pathRadiance[pathSlot(s.origin)].xyz += s.contribution.xyz;
   }
 }

@@ -9,5 +9,6 @@ WP_KERNEL void extend(WP_KERNEL_ARGS) {
     return;
   }
   RenderParams params = *paramsBuffer;
-  hits[i] = extendRay(WP_SCENE_BUFFER_ARGS params, rays[queue * params.counts.w + i]);
+  DeviceBuffers buffers = WP_KERNEL_BUFFERS;
+  hits[i] = extendRay(buffers, params, rays[queue * params.counts.w + i]);
 }

@@ -29,7 +29,8 @@ WP_KERNEL void shade(WP_KERNEL_ARGS) {
   r.flags = 0u;
   if (i < counters[WP_COUNTER_RAYS + queue]) {
     PathRay ray = rays[queue * maxPaths + i];
-    r = shadePath(WP_SHADING_BUFFER_ARGS params, ray, hits[i].hit);
+    DeviceBuffers buffers = WP_KERNEL_BUFFERS;
+    r = shadePath(buffers, params, ray, hits[i].hit);
     uint slot = pathSlot(ray.origin);
     if (any(r.radiance != (float3)(0.0f))) {
       pathRadiance[slot].xyz += r.radiance;

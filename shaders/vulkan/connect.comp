@@ -10,7 +10,7 @@ void main() {
   if (i >= counters[WP_COUNTER_SHADOW_RAYS + bounceParity()]) {
     return;
   }
-  ShadowRay s = loadShadowRay(i);
+  ShadowRay s = WP_LOAD(shadowRays, i);
   if (shadowRayUnoccluded(params, s)) {
     pathRadiance[pathSlot(s.origin)].xyz += s.contribution.xyz;
   }

@@ -11,5 +11,5 @@ void main() {
   if (i >= counters[WP_COUNTER_RAYS + queue]) {
     return;
   }
-  hits[i] = extendRay(params, loadRay(queue * params.counts.w + i));
+  hits[i] = extendRay(params, WP_LOAD(rays, queue * params.counts.w + i));
 }

@@ -26,8 +26,8 @@ void main() {
     return;
   }
   uint maxPaths = params.counts.w;
-  PathRay ray = loadRay(queue * maxPaths + i);
-  ShadeResult r = shadePath(params, ray, WP_UINTS(hitTexels, i, 1u, 0u));
+  PathRay ray = WP_LOAD(rays, queue * maxPaths + i);
+  ShadeResult r = shadePath(params, ray, WP_LOAD(hits, i).hit);
   uint slot = pathSlot(ray.origin);
   if (r.radiance != vec3(0.0)) {
     pathRadiance[slot].xyz += r.radiance;

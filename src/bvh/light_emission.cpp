@@ -21,8 +21,11 @@ glm::vec3 meanEmission(const std::vector<gpu::GpuTexture>& textures, const std::
     extent = std::max(extent, glm::length((uv[(k + 1) % 3] - uv[k]) * texelsPerUnit));
   }
   const int n = std::clamp(static_cast<int>(std::ceil(extent)), 4, 32);
+  gpu::DeviceBuffers buffers{};
+  buffers.textures = textures.data();
+  buffers.texels = texels.data();
   auto at = [&](float b1, float b2) {
-    return gpu::texturedEmission(textures.data(), texels.data(), factor, texture, true, gpu::uvAt(shading, {b1, b2}));
+    return gpu::texturedEmission(buffers, factor, texture, true, gpu::uvAt(shading, {b1, b2}));
   };
   // Splitting each edge into n parts makes n (n + 1) / 2 upright sub-triangles, with corners
   // (i, j), (i + 1, j), (i, j + 1) in units of 1 / n, and n (n - 1) / 2 inverted ones.

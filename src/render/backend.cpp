@@ -15,10 +15,10 @@ SceneArray arrayOf(const std::vector<T>& v) {
 }  // namespace
 
 std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
-  // In the order of kSceneBindings.
-  return {arrayOf(s.nodes),       arrayOf(s.triangles),      arrayOf(s.instances),      arrayOf(s.planes),
-          arrayOf(s.materials),   arrayOf(s.lights),         arrayOf(s.skyRadiance),    arrayOf(s.skyMarginal),
-          arrayOf(s.skyConditional), arrayOf(s.triangleShading), arrayOf(s.textures), arrayOf(s.texels)};
+  // Each scene array of the binding table is the GpuScene member of the same name.
+#define WP_SCENE_ARRAY(name) arrayOf(s.name),
+  return {WP_FOR_EACH_SCENE_ARRAY};
+#undef WP_SCENE_ARRAY
 }
 
 const char* kernelName(Kernel kernel) {

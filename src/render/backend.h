@@ -9,17 +9,31 @@
 
 #include <glm/glm.hpp>
 
-#include "shaders/common/layout.h"
+#include "shaders/common/binding_table.h"
 
 namespace wp {
 
 struct GpuScene;
 
-// The bindings (layout.h) of a packed scene's arrays, in the order sceneArrays lists them.
-inline constexpr std::array<uint32_t, 12> kSceneBindings = {
-    WP_BINDING_NODES,          WP_BINDING_TRIANGLES,       WP_BINDING_INSTANCES,      WP_BINDING_PLANES,
-    WP_BINDING_MATERIALS,      WP_BINDING_LIGHTS,          WP_BINDING_ENV_RADIANCE,   WP_BINDING_ENV_MARGINAL,
-    WP_BINDING_ENV_CONDITIONAL, WP_BINDING_TRIANGLE_SHADING, WP_BINDING_TEXTURES,     WP_BINDING_TEXELS};
+// The bindings of a packed scene's arrays: the binding table's TEXELS rows, in its order,
+// which is the order sceneArrays lists them in.
+inline constexpr size_t kSceneArrayCount = [] {
+  size_t count = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    count += b.access == gpu::BindingAccess::Texels ? 1 : 0;
+  }
+  return count;
+}();
+inline constexpr std::array<uint32_t, kSceneArrayCount> kSceneBindings = [] {
+  std::array<uint32_t, kSceneArrayCount> bindings{};
+  size_t next = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    if (b.access == gpu::BindingAccess::Texels) {
+      bindings[next++] = b.index;
+    }
+  }
+  return bindings;
+}();
 
 // One array of a packed scene as a backend uploads it to kSceneBindings[i].
 struct SceneArray {

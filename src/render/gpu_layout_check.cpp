@@ -1,7 +1,7 @@
 // Compile-time checks that the host's view of the GPU structs matches std430 / OpenCL.
 #include <cstddef>
 
-#include "shaders/common/layout.h"
+#include "shaders/common/binding_table.h"
 
 namespace wp::gpu {
 
@@ -25,5 +25,23 @@ static_assert(offsetof(QueueCounters, connectDispatch) == WP_COUNTER_CONNECT_DIS
 static_assert(offsetof(QueueCounters, totals) == WP_COUNTER_TOTAL_RAYS * 4);
 static_assert(sizeof(PassConstants) == 16);
 static_assert(offsetof(RenderParams, image) == 112);
+
+// The binding table: each row's stride is its element's size in 16-byte texels (what the
+// GLSL loaders step by), rows come in binding order with no gaps, and the OpenCL rows come
+// first (kernel argument i is binding i).
+#define WP_CHECK_STRIDE(name, binding, Element, stride, format, access, backends)                   \
+  static_assert((stride) == 0 ? sizeof(Element) == 4 : sizeof(Element) == 16 * (stride),              \
+                "binding " #name ": the table's stride must be sizeof / 16 (0 for a 4-byte element)");
+WP_BINDINGS(WP_CHECK_STRIDE)
+static_assert([] {
+  bool openClPart = true;
+  for (uint i = 0; i < kBindingCount; ++i) {
+    if (kBindings[i].index != i || (kBindings[i].openCl && !openClPart)) {
+      return false;
+    }
+    openClPart = kBindings[i].openCl;
+  }
+  return true;
+}());
 
 }  // namespace wp::gpu

@@ -7,10 +7,19 @@
 #include "backend/opencl/cl_check.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
-#include "shaders/opencl/bindings.h"
 
 namespace wp {
 namespace {
+
+// The kernels take one argument per binding that OpenCL uses (at the binding's index, the
+// table lists them first), then the pass constants.
+constexpr uint32_t kPassConstantsArgument = [] {
+  uint32_t count = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    count += b.openCl ? 1 : 0;
+  }
+  return count;
+}();
 
 // Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray and its
 // radiance.
@@ -145,13 +154,13 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
 }
 
 void OpenClBackend::bindPathState() {
-  bind(WP_BINDING_PARAMS, params_);
-  bind(WP_BINDING_RAYS, rays_);
-  bind(WP_BINDING_HITS, hits_);
-  bind(WP_BINDING_SHADOW_RAYS, shadowRays_);
-  bind(WP_BINDING_PATH_RADIANCE, pathRadiance_);
-  bind(WP_BINDING_COUNTERS, counters_);
-  bind(WP_BINDING_ACCUM, accumulation_);
+  bind(gpu::Binding::params, params_);
+  bind(gpu::Binding::rays, rays_);
+  bind(gpu::Binding::hits, hits_);
+  bind(gpu::Binding::shadowRays, shadowRays_);
+  bind(gpu::Binding::pathRadiance, pathRadiance_);
+  bind(gpu::Binding::counters, counters_);
+  bind(gpu::Binding::accumulation, accumulation_);
 }
 
 void OpenClBackend::beginPass() {
@@ -195,7 +204,7 @@ void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants,
   }
   int k = static_cast<int>(kernel);
   cl_kernel clKernel = variants_[motion_].kernels[k];
-  CL_CHECK(clSetKernelArg(clKernel, WP_ARG_PASS, sizeof(constants), &constants));
+  CL_CHECK(clSetKernelArg(clKernel, kPassConstantsArgument, sizeof(constants), &constants));
   size_t local = WP_WORKGROUP_SIZE;
   size_t global = (size_t(threads) + local - 1) / local * local;
   cl_event event = nullptr;

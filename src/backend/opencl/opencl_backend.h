@@ -45,7 +45,7 @@ public:
 private:
   // Builds the program and kernels with (`motion`) or without WP_MOTION_BLUR.
   void buildVariant(bool motion);
-  // Sets kernel argument `binding` (layout.h) of every kernel of the current variant to `buffer`.
+  // Sets kernel argument `binding` (binding_table.h) of every kernel of the current variant to `buffer`.
   void bind(uint32_t binding, const OpenClBuffer& buffer);
   // Work items for a launch sized by the queue whose dispatch word is `word`.
   uint32_t queueThreads(uint32_t word, uint32_t pathCount);
@@ -69,7 +69,6 @@ private:
   ClDispatch dispatchMode_;
   bool validate_;
 
-  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
   std::array<OpenClBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
   uint64_t sceneBytes_ = 0;
   OpenClBuffer params_;

@@ -50,25 +50,14 @@ SpirvCode spirvFor(Kernel kernel, bool motion) {
 }
 
 VkDescriptorType descriptorType(uint32_t binding) {
-  switch (binding) {
-    case WP_BINDING_PARAMS: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case WP_BINDING_NODES:
-    case WP_BINDING_TRIANGLES:
-    case WP_BINDING_INSTANCES:
-    case WP_BINDING_PLANES:
-    case WP_BINDING_MATERIALS:
-    case WP_BINDING_LIGHTS:
-    case WP_BINDING_ENV_RADIANCE:
-    case WP_BINDING_ENV_MARGINAL:
-    case WP_BINDING_ENV_CONDITIONAL:
-    case WP_BINDING_TRIANGLE_SHADING:
-    case WP_BINDING_TEXTURES:
-    case WP_BINDING_TEXELS:
-    case WP_BINDING_RAYS_READ:
-    case WP_BINDING_HITS_READ:
-    case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    default: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  switch (gpu::kBindings[binding].access) {
+    case gpu::BindingAccess::Uniform: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case gpu::BindingAccess::Texels:
+    case gpu::BindingAccess::TexelView: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    case gpu::BindingAccess::Storage:
+    case gpu::BindingAccess::Write: break;
   }
+  return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 // Storage for the queues, also read as texels by the next stage.
@@ -86,9 +75,9 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
   }
   VkDevice device = context_->device;
 
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, WP_BINDING_COUNT},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, WP_BINDING_COUNT},
-                                  {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, WP_BINDING_COUNT}};
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, gpu::kBindingCount},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, gpu::kBindingCount},
+                                  {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, gpu::kBindingCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
   poolInfo.poolSizeCount = 3;
@@ -160,15 +149,15 @@ uint32_t VulkanBackend::maxPathsInFlight() const {
 
 void VulkanBackend::createLayouts() {
   VkDevice device = context_->device;
-  std::vector<VkDescriptorSetLayoutBinding> bindings(WP_BINDING_COUNT);
-  for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
+  std::vector<VkDescriptorSetLayoutBinding> bindings(gpu::kBindingCount);
+  for (uint32_t i = 0; i < gpu::kBindingCount; ++i) {
     bindings[i].binding = i;
     bindings[i].descriptorType = descriptorType(i);
     bindings[i].descriptorCount = 1;
     bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layoutInfo.bindingCount = WP_BINDING_COUNT;
+  layoutInfo.bindingCount = gpu::kBindingCount;
   layoutInfo.pBindings = bindings.data();
   VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
 
@@ -258,14 +247,14 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
 }
 
 void VulkanBackend::writeDescriptors() {
-  std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers{};
-  buffers[WP_BINDING_PARAMS] = &params_;
-  buffers[WP_BINDING_RAYS] = buffers[WP_BINDING_RAYS_READ] = &rays_;
-  buffers[WP_BINDING_HITS] = buffers[WP_BINDING_HITS_READ] = &hits_;
-  buffers[WP_BINDING_SHADOW_RAYS] = buffers[WP_BINDING_SHADOW_RAYS_READ] = &shadowRays_;
-  buffers[WP_BINDING_PATH_RADIANCE] = &pathRadiance_;
-  buffers[WP_BINDING_COUNTERS] = &counters_;
-  buffers[WP_BINDING_ACCUM] = &accumulation_;
+  std::array<const VulkanBuffer*, gpu::kBindingCount> buffers{};
+  buffers[gpu::Binding::params] = &params_;
+  buffers[gpu::Binding::rays] = buffers[gpu::Binding::raysTexelView] = &rays_;
+  buffers[gpu::Binding::hits] = buffers[gpu::Binding::hitsTexelView] = &hits_;
+  buffers[gpu::Binding::shadowRays] = buffers[gpu::Binding::shadowRaysTexelView] = &shadowRays_;
+  buffers[gpu::Binding::pathRadiance] = &pathRadiance_;
+  buffers[gpu::Binding::counters] = &counters_;
+  buffers[gpu::Binding::accumulation] = &accumulation_;
   for (size_t i = 0; i < kSceneBindings.size(); ++i) {
     buffers[kSceneBindings[i]] = &sceneBuffers_[i];
   }
@@ -273,10 +262,10 @@ void VulkanBackend::writeDescriptors() {
     vkDestroyBufferView(context_->device, view, nullptr);
   }
   texelViews_.clear();
-  std::array<VkDescriptorBufferInfo, WP_BINDING_COUNT> infos;
-  std::array<VkBufferView, WP_BINDING_COUNT> views{};
-  std::array<VkWriteDescriptorSet, WP_BINDING_COUNT> writes;
-  for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
+  std::array<VkDescriptorBufferInfo, gpu::kBindingCount> infos;
+  std::array<VkBufferView, gpu::kBindingCount> views{};
+  std::array<VkWriteDescriptorSet, gpu::kBindingCount> writes;
+  for (uint32_t i = 0; i < gpu::kBindingCount; ++i) {
     VkDescriptorType type = descriptorType(i);
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = descriptorSet_;
@@ -284,8 +273,7 @@ void VulkanBackend::writeDescriptors() {
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = type;
     if (type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
-      // The sky's distributions are arrays of single floats; everything else is vec4s.
-      bool scalars = i == WP_BINDING_ENV_MARGINAL || i == WP_BINDING_ENV_CONDITIONAL;
+      bool scalars = gpu::kBindings[i].format == gpu::TexelFormat::R32ui;
       views[i] = texelView(*buffers[i], scalars ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_UINT);
       writes[i].pTexelBufferView = &views[i];
     } else {
@@ -293,7 +281,7 @@ void VulkanBackend::writeDescriptors() {
       writes[i].pBufferInfo = &infos[i];
     }
   }
-  vkUpdateDescriptorSets(context_->device, WP_BINDING_COUNT, writes.data(), 0, nullptr);
+  vkUpdateDescriptorSets(context_->device, gpu::kBindingCount, writes.data(), 0, nullptr);
 }
 
 VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer, VkFormat format) {

@@ -50,9 +50,6 @@ private:
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
   std::vector<VkBufferView> texelViews_;
 
-  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS, then the sky's
-  // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL, then WP_BINDING_TRIANGLE_SHADING ..
-  // WP_BINDING_TEXELS.
   std::array<VulkanBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
   VulkanBuffer params_;
   VulkanBuffer rays_;
