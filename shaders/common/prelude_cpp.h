@@ -2,6 +2,7 @@
 #ifndef WP_PRELUDE_CPP_H
 #define WP_PRELUDE_CPP_H
 
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -37,5 +38,9 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define toFloat(x) static_cast<float>(x)
 #define toUint(x) static_cast<uint>(x)
 #define toInt(x) static_cast<int>(x)
+// Atomic add on a buffer element, returning the value before.
+#define WP_ATOMIC_ADD(element, n) std::atomic_ref<uint>(element).fetch_add(n)
+// Adds a vec3 to the xyz of a vec4 buffer element.
+#define WP_ADD_XYZ(element, v) (element) += vec4((v), 0.0f)
 
 #endif

@@ -1,6 +1,5 @@
 // The arguments every OpenCL stage kernel takes, generated from the binding table
-// (common/binding_table.h), and the queue counters as a struct: the OpenCL counterpart of
-// ../vulkan/bindings.glsl.
+// (common/binding_table.h): the OpenCL counterpart of ../vulkan/bindings.glsl.
 #ifndef WP_OPENCL_BINDINGS_H
 #define WP_OPENCL_BINDINGS_H
 
@@ -30,11 +29,5 @@
 
 // Every dispatch runs workgroups of WP_WORKGROUP_SIZE, which lets the compiler specialise.
 #define WP_KERNEL __kernel __attribute__((reqd_work_group_size(WP_WORKGROUP_SIZE, 1, 1)))
-
-QueueCounters loadCounters(__global const uint *counters) { return *(__global const QueueCounters *)counters; }
-void storeCounters(__global uint *counters, QueueCounters c) { *(__global QueueCounters *)counters = c; }
-
-// The ray queue (and shadow queue) of the pass's current bounce.
-uint bounceParity(PassConstants pc) { return pc.pass.w & 1u; }
 
 #endif

@@ -1,7 +1,6 @@
 // What every Vulkan stage declares (one descriptor set): each buffer of the binding table
 // (common/binding_table.h) and, for a texel buffer, its <name>At(i) loader, which
-// WP_LOAD(name, i) calls; the push constants; the queue counters as a QueueCounters struct
-// for the stage functions of stages.h.
+// WP_LOAD(name, i) calls; the push constants.
 #include "common/binding_table.h"
 
 layout(local_size_x = WP_WORKGROUP_SIZE) in;
@@ -12,8 +11,9 @@ layout(push_constant) uniform Push { PassConstants pc; };
   WP_GLSL_##access(name, binding, Element, stride, format)
 #define WP_GLSL_UNIFORM(name, index, Element, stride, format) \
   layout(std140, binding = index) uniform name##Block { Element name; };
-#define WP_GLSL_STORAGE(name, index, Element, stride, format) \
-  layout(std430, binding = index) buffer name##Block { Element name[]; };
+#define WP_GLSL_STORAGE(name, index, Element, stride, format)              \
+  layout(std430, binding = index) buffer name##Block { Element name[]; }; \
+  Element name##At(uint i) { return name[i]; }
 #define WP_GLSL_WRITE(name, index, Element, stride, format) \
   layout(std430, binding = index) writeonly buffer name##Block { Element name[]; };
 #define WP_GLSL_TEXELS(name, index, Element, stride, format) \
@@ -39,23 +39,3 @@ layout(push_constant) uniform Push { PassConstants pc; };
   uint name##At(uint i) { return texelFetch(name##Texels, int(i >> 2u))[i & 3u]; }
 
 WP_BINDINGS(WP_GLSL_BINDING)
-
-uint bounceParity() { return pc.pass.w & 1u; }
-
-QueueCounters loadCounters() {
-  QueueCounters c;
-  c.counts = uvec4(counters[0], counters[1], counters[2], counters[3]);
-  c.totals = uvec4(counters[4], counters[5], counters[6], counters[7]);
-  c.extendDispatch = uvec4(counters[8], counters[9], counters[10], counters[11]);
-  c.connectDispatch = uvec4(counters[12], counters[13], counters[14], counters[15]);
-  return c;
-}
-
-void storeCounters(QueueCounters c) {
-  for (uint i = 0u; i < 4u; ++i) {
-    counters[i] = c.counts[i];
-    counters[4u + i] = c.totals[i];
-    counters[8u + i] = c.extendDispatch[i];
-    counters[12u + i] = c.connectDispatch[i];
-  }
-}

@@ -49,16 +49,40 @@ enum class Kernel { Generate, Extend, Shade, Advance, Connect, Accumulate };
 inline constexpr int kKernelCount = 6;
 const char* kernelName(Kernel kernel);
 
-// How many threads a dispatch runs: a count the host knows, or the length of a queue the
-// GPU wrote into the counters (Vulkan: indirect dispatch).
+// How many threads a dispatch runs: a count the host knows, or a queue's length as dispatch
+// arguments that an earlier dispatch of the pass wrote into the counters buffer, at word
+// `argumentsWord` (queues.h; Vulkan dispatches indirectly, OpenCL reads them back or
+// launches every path of the pass).
 struct DispatchSize {
-  enum class Source { Host, RayQueue, ShadowQueue };
+  enum class Source { Host, Queue };
   Source source = Source::Host;
-  uint32_t threads = 0;
+  uint32_t threads = 0;        // Host
+  uint32_t argumentsWord = 0;  // Queue: WP_COUNTER_*_DISPATCH
 
-  static DispatchSize fixed(uint32_t threads) { return {Source::Host, threads}; }
-  static DispatchSize rayQueue() { return {Source::RayQueue, 0}; }
-  static DispatchSize shadowQueue() { return {Source::ShadowQueue, 0}; }
+  static DispatchSize fixed(uint32_t threads) { return {Source::Host, threads, 0}; }
+  // The current bounce's ray queue (extend and shade).
+  static DispatchSize rayQueue() { return {Source::Queue, 0, WP_COUNTER_EXTEND_DISPATCH}; }
+  // The current bounce's shadow queue (connect).
+  static DispatchSize shadowQueue() { return {Source::Queue, 0, WP_COUNTER_CONNECT_DISPATCH}; }
+};
+
+// Whether a stage writes the dispatch arguments that later Queue-sized dispatches read.
+enum class DispatchArguments { Untouched, Written };
+
+// One stage of a pass, as the integrator orders them (wavefront.cpp).
+struct StageDispatch {
+  Kernel kernel;
+  gpu::PassConstants constants;
+  DispatchSize size;
+  DispatchArguments arguments = DispatchArguments::Untouched;
+};
+
+// What a pass is, before its dispatches: its paths, and the bounces it traces (rounds of
+// extend, shade, advance and connect), each of which traces at most one ray and one shadow
+// ray per path.
+struct PassShape {
+  uint32_t paths = 0;
+  uint32_t bounces = 0;
 };
 
 struct PassResult {
@@ -90,8 +114,8 @@ public:
   // accumulation for params.image.z pixels; clears the accumulation.
   virtual void configure(const gpu::RenderParams& params) = 0;
   // Starts recording a sample pass; dispatches run in order, each after the previous one.
-  virtual void beginPass() = 0;
-  virtual void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) = 0;
+  virtual void beginPass(const PassShape& shape) = 0;
+  virtual void dispatch(const StageDispatch& stage) = 0;
   // Runs the recorded pass and waits for it.
   virtual PassResult endPass() = 0;
   virtual Accumulation readAccumulation() = 0;

@@ -2,6 +2,9 @@
 #include <cstddef>
 
 #include "shaders/common/binding_table.h"
+// Not used on the host: included so that the stage code is compiled as C++ too, as every
+// portable header is.
+#include "shaders/common/stages.h"
 
 namespace wp::gpu {
 

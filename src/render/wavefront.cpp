@@ -67,18 +67,21 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
     c.pass = glm::uvec4(firstPixel, firstSample, pathCount, bounce);
     return c;
   };
-  backend_.beginPass();
-  backend_.dispatch(Kernel::Generate, constants(0), DispatchSize::fixed(pathCount));
   // Vertices of bounce 0 .. maxBounces scatter; the rays they spawn reach bounce
   // maxBounces + 1, where only emission is gathered.
-  for (uint32_t bounce = 0; bounce <= settings_.maxBounces + 1; ++bounce) {
-    backend_.dispatch(Kernel::Extend, constants(bounce), DispatchSize::rayQueue());
-    backend_.dispatch(Kernel::Shade, constants(bounce), DispatchSize::rayQueue());
-    backend_.dispatch(Kernel::Advance, constants(bounce), DispatchSize::fixed(1));
-    backend_.dispatch(Kernel::Connect, constants(bounce), DispatchSize::shadowQueue());
+  const uint32_t bounces = settings_.maxBounces + 2;
+  backend_.beginPass({pathCount, bounces});
+  // Generate fills bounce 0's ray queue and sizes extend and shade to it; each advance sizes
+  // connect of its bounce and extend and shade of the next (queues.h).
+  backend_.dispatch({Kernel::Generate, constants(0), DispatchSize::fixed(pathCount), DispatchArguments::Written});
+  for (uint32_t bounce = 0; bounce < bounces; ++bounce) {
+    backend_.dispatch({Kernel::Extend, constants(bounce), DispatchSize::rayQueue()});
+    backend_.dispatch({Kernel::Shade, constants(bounce), DispatchSize::rayQueue()});
+    backend_.dispatch({Kernel::Advance, constants(bounce), DispatchSize::fixed(1), DispatchArguments::Written});
+    backend_.dispatch({Kernel::Connect, constants(bounce), DispatchSize::shadowQueue()});
   }
   uint32_t pixels = params_.image.z;
-  backend_.dispatch(Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels)));
+  backend_.dispatch({Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels))});
   PassResult result = backend_.endPass();
   stats.extensionRays += result.extensionRays;
   stats.shadowRays += result.shadowRays;

@@ -163,10 +163,9 @@ void OpenClBackend::bindPathState() {
   bind(gpu::Binding::accumulation, accumulation_);
 }
 
-void OpenClBackend::beginPass() {
+void OpenClBackend::beginPass(const PassShape& shape) {
+  pass_ = shape;
   countersStale_ = true;
-  passPaths_ = 0;
-  passBounces_ = 0;
 }
 
 std::array<uint32_t, WP_COUNTER_WORDS> OpenClBackend::readCounters() {
@@ -176,9 +175,9 @@ std::array<uint32_t, WP_COUNTER_WORDS> OpenClBackend::readCounters() {
   return counters;
 }
 
-uint32_t OpenClBackend::queueThreads(uint32_t word, uint32_t pathCount) {
+uint32_t OpenClBackend::queueThreads(uint32_t word) {
   if (dispatchMode_ == ClDispatch::Max) {
-    return pathCount;
+    return pass_.paths;
   }
   if (countersStale_) {
     lastCounters_ = readCounters();
@@ -187,24 +186,16 @@ uint32_t OpenClBackend::queueThreads(uint32_t word, uint32_t pathCount) {
   return lastCounters_[word] * WP_WORKGROUP_SIZE;
 }
 
-void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) {
-  uint32_t pathCount = constants.pass.z;
-  uint32_t threads = size.threads;
-  if (size.source == DispatchSize::Source::RayQueue) {
-    threads = queueThreads(WP_COUNTER_EXTEND_DISPATCH, pathCount);
-  } else if (size.source == DispatchSize::Source::ShadowQueue) {
-    threads = queueThreads(WP_COUNTER_CONNECT_DISPATCH, pathCount);
-  }
-  passPaths_ = std::max(passPaths_, pathCount);
-  passBounces_ += kernel == Kernel::Extend;
-  // Generate and advance are the kernels that write the dispatch words.
-  countersStale_ = countersStale_ || kernel == Kernel::Generate || kernel == Kernel::Advance;
+void OpenClBackend::dispatch(const StageDispatch& stage) {
+  const DispatchSize& size = stage.size;
+  uint32_t threads = size.source == DispatchSize::Source::Queue ? queueThreads(size.argumentsWord) : size.threads;
+  countersStale_ = countersStale_ || stage.arguments == DispatchArguments::Written;
   if (threads == 0) {
     return;
   }
-  int k = static_cast<int>(kernel);
+  int k = static_cast<int>(stage.kernel);
   cl_kernel clKernel = variants_[motion_].kernels[k];
-  CL_CHECK(clSetKernelArg(clKernel, kPassConstantsArgument, sizeof(constants), &constants));
+  CL_CHECK(clSetKernelArg(clKernel, kPassConstantsArgument, sizeof(stage.constants), &stage.constants));
   size_t local = WP_WORKGROUP_SIZE;
   size_t global = (size_t(threads) + local - 1) / local * local;
   cl_event event = nullptr;
@@ -215,9 +206,9 @@ void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants,
 void OpenClBackend::checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& words) const {
   // A queue never holds more than one entry per path, and each bounce traces at most one
   // ray and one shadow ray per path.
-  uint64_t paths = passPaths_;
-  bool inBounds = words[WP_COUNTER_TOTAL_RAYS] <= paths * passBounces_ &&
-                  words[WP_COUNTER_TOTAL_SHADOW_RAYS] <= paths * passBounces_;
+  uint64_t paths = pass_.paths;
+  bool inBounds = words[WP_COUNTER_TOTAL_RAYS] <= paths * pass_.bounces &&
+                  words[WP_COUNTER_TOTAL_SHADOW_RAYS] <= paths * pass_.bounces;
   std::string queues;
   for (uint32_t i = 0; i < 4; ++i) {
     inBounds = inBounds && words[WP_COUNTER_RAYS + i] <= paths;

@@ -320,7 +320,7 @@ void VulkanBackend::timestamp(int kernel) {
   queryKernels_.push_back(kernel);
 }
 
-void VulkanBackend::beginPass() {
+void VulkanBackend::beginPass(const PassShape&) {
   VK_CHECK(vkResetCommandBuffer(commandBuffer_, 0));
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -341,25 +341,25 @@ void VulkanBackend::beginPass() {
   recordedDispatch_ = false;
 }
 
-void VulkanBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) {
+void VulkanBackend::dispatch(const StageDispatch& stage) {
   if (recordedDispatch_) {
     // Each stage reads what the previous ones wrote, including indirect dispatch sizes.
     barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
   }
   recordedDispatch_ = true;
-  int k = static_cast<int>(kernel);
+  int k = static_cast<int>(stage.kernel);
   vkCmdBindPipeline(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[k]);
-  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(stage.constants),
+                     &stage.constants);
+  // The barrier before every dispatch makes arguments written by an earlier stage visible.
+  const DispatchSize& size = stage.size;
   switch (size.source) {
     case DispatchSize::Source::Host:
       vkCmdDispatch(commandBuffer_, (size.threads + WP_WORKGROUP_SIZE - 1) / WP_WORKGROUP_SIZE, 1, 1);
       break;
-    case DispatchSize::Source::RayQueue:
-      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), WP_COUNTER_EXTEND_DISPATCH * sizeof(uint32_t));
-      break;
-    case DispatchSize::Source::ShadowQueue:
-      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), WP_COUNTER_CONNECT_DISPATCH * sizeof(uint32_t));
+    case DispatchSize::Source::Queue:
+      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), size.argumentsWord * sizeof(uint32_t));
       break;
   }
   timestamp(k);

@@ -23,8 +23,8 @@ public:
   void loadScene(const GpuScene& scene) override;
   bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
-  void beginPass() override;
-  void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
+  void beginPass(const PassShape& shape) override;
+  void dispatch(const StageDispatch& stage) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
 
