@@ -356,8 +356,8 @@ Hit bruteForce(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
   }
   for (uint32_t i = 0; i < g.instances.size(); ++i) {
     const wp::gpu::GpuInstance& inst = g.instances[i];
-    glm::vec3 oo = wp::gpu::instanceRayOrigin(inst, o);
-    glm::vec3 od = wp::gpu::instanceRayDirection(inst, d);
+    glm::vec3 oo = wp::gpu::pointToObject(inst, o);
+    glm::vec3 od = wp::gpu::directionToObject(inst, d);
     if (inst.info.x == WP_INSTANCE_SPHERE) {
       float t = wp::gpu::intersectUnitSphere(oo, od, tMax);
       if (t < best.t) {

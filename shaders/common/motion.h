@@ -4,6 +4,7 @@
 #define WP_MOTION_H
 
 #include "binding_table.h"
+#include "instance.h"
 
 
 WP_BEGIN
@@ -60,17 +61,13 @@ WP_FN AffineRows objectToWorldAt(GpuInstance open, GpuInstance close, float u) {
 // The instance record `inst` with its world-to-object rows replaced by the inverse of `m`
 // (the 3x3 part by cofactors over the determinant, then the translation).
 WP_FN GpuInstance instanceWithTransform(GpuInstance inst, AffineRows m) {
-  vec3 r0 = make_vec3(m.row0.x, m.row0.y, m.row0.z);
-  vec3 r1 = make_vec3(m.row1.x, m.row1.y, m.row1.z);
-  vec3 r2 = make_vec3(m.row2.x, m.row2.y, m.row2.z);
-  vec3 c0 = cross(r1, r2);
-  vec3 c1 = cross(r2, r0);
-  vec3 c2 = cross(r0, r1);
-  float invDet = 1.0f / dot(r0, c0);
+  Cofactors c = cofactorsOfRows(make_vec3(m.row0.x, m.row0.y, m.row0.z), make_vec3(m.row1.x, m.row1.y, m.row1.z),
+                                 make_vec3(m.row2.x, m.row2.y, m.row2.z));
+  float invDet = 1.0f / c.determinant;
   // The inverse's columns are c0, c1, c2 over the determinant; its rows are read across them.
-  vec3 i0 = make_vec3(c0.x, c1.x, c2.x) * invDet;
-  vec3 i1 = make_vec3(c0.y, c1.y, c2.y) * invDet;
-  vec3 i2 = make_vec3(c0.z, c1.z, c2.z) * invDet;
+  vec3 i0 = make_vec3(c.c0.x, c.c1.x, c.c2.x) * invDet;
+  vec3 i1 = make_vec3(c.c0.y, c.c1.y, c.c2.y) * invDet;
+  vec3 i2 = make_vec3(c.c0.z, c.c1.z, c.c2.z) * invDet;
   vec3 t = make_vec3(m.row0.w, m.row1.w, m.row2.w);
   inst.worldToObject0 = make_vec4(i0.x, i0.y, i0.z, -dot(i0, t));
   inst.worldToObject1 = make_vec4(i1.x, i1.y, i1.z, -dot(i1, t));

@@ -29,7 +29,7 @@ typedef uint4 uvec4;
 #define asUint(x) as_uint(x)
 // Atomic add on a buffer element, returning the value before.
 #define WP_ATOMIC_ADD(element, n) atomic_add(&(element), n)
-// Adds a vec3 to the xyz of a vec4 buffer element (a write of three components, not four).
+// Adds a vec3 to the xyz of a vec4 (for a buffer element, a write of three components).
 #define WP_ADD_XYZ(element, v) (element).xyz += (v)
 
 #endif

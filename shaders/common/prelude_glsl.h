@@ -25,7 +25,7 @@
 #define asUint(x) floatBitsToUint(x)
 // Atomic add on a buffer element, returning the value before.
 #define WP_ATOMIC_ADD(element, n) atomicAdd(element, n)
-// Adds a vec3 to the xyz of a vec4 buffer element (a write of three components, not four).
+// Adds a vec3 to the xyz of a vec4 (for a buffer element, a write of three components).
 #define WP_ADD_XYZ(element, v) (element).xyz += (v)
 
 float fabs(float x) { return abs(x); }

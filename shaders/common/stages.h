@@ -136,6 +136,27 @@ WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
   }
 }
 
+// Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance
+// and its square to the pixel's running sums (the squares give the per-pixel variance). It
+// walks the pixel's slots in sample order, so there are no races and the sum order is fixed.
+WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
+  uint pixels = params.image.z;
+  uint pathCount = pc.pass.z;
+  if (t >= min(pathCount, pixels)) {
+    return;
+  }
+  uint pixel = (pc.pass.x + t) % pixels;
+  vec4 sum = WP_LOAD(accumulation, pixel);
+  vec4 sumSquares = WP_LOAD(accumulation, pixels + pixel);
+  for (uint slot = t; slot < pathCount; slot += pixels) {
+    vec3 l = xyz(WP_LOAD(pathRadiance, slot));
+    WP_ADD_XYZ(sum, l);
+    WP_ADD_XYZ(sumSquares, l * l);
+  }
+  WP_BUFFER(accumulation)[pixel] = sum;
+  WP_BUFFER(accumulation)[pixels + pixel] = sumSquares;
+}
+
 WP_END
 
 #endif

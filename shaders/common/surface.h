@@ -4,6 +4,7 @@
 #define WP_SURFACE_H
 
 #include "binding_table.h"
+#include "instance.h"
 #include "motion.h"
 
 WP_BEGIN
@@ -23,31 +24,6 @@ WP_STRUCT(SurfaceHit)
   uint material;
   uint light;     // index into the light buffer, WP_INVALID if not a sampled light
 WP_STRUCT_END(SurfaceHit)
-
-// Transforms an object-space normal to world space with the inverse transpose, which for a
-// world-to-object matrix M is transpose(M).
-WP_FN vec3 normalToWorld(GpuInstance inst, vec3 n) {
-  vec3 r0 = make_vec3(inst.worldToObject0.x, inst.worldToObject0.y, inst.worldToObject0.z);
-  vec3 r1 = make_vec3(inst.worldToObject1.x, inst.worldToObject1.y, inst.worldToObject1.z);
-  vec3 r2 = make_vec3(inst.worldToObject2.x, inst.worldToObject2.y, inst.worldToObject2.z);
-  return normalize(r0 * n.x + r1 * n.y + r2 * n.z);
-}
-
-// Transforms an object-space direction to world space, unit length: the inverse of the
-// world-to-object matrix M applied to d, as the cofactor columns over det(M).
-WP_FN vec3 objectToWorldDirection(GpuInstance inst, vec3 d) {
-  vec3 r0 = make_vec3(inst.worldToObject0.x, inst.worldToObject0.y, inst.worldToObject0.z);
-  vec3 r1 = make_vec3(inst.worldToObject1.x, inst.worldToObject1.y, inst.worldToObject1.z);
-  vec3 r2 = make_vec3(inst.worldToObject2.x, inst.worldToObject2.y, inst.worldToObject2.z);
-  vec3 c0 = cross(r1, r2);
-  vec3 w = (c0 * d.x + cross(r2, r0) * d.y + cross(r0, r1) * d.z) / dot(r0, c0);
-  return normalize(w);
-}
-
-WP_FN vec3 pointToObject(GpuInstance inst, vec3 p) {
-  vec4 q = make_vec4(p.x, p.y, p.z, 1.0f);
-  return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
-}
 
 // Four bytes (r in the low one) as values in [0, 1].
 WP_FN vec4 unpackUnorm8(uint word) {
@@ -135,11 +111,11 @@ WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 p
   float dv2 = shading.v.z - shading.v.x;
   float determinant = du1 * dv2 - du2 * dv1;
   if (dot(tangent, tangent) > 1e-12f && dot(bitangent, bitangent) > 1e-12f) {
-    s.tangent = objectToWorldDirection(inst, tangent);
-    s.bitangent = objectToWorldDirection(inst, bitangent);
+    s.tangent = directionToWorld(inst, tangent);
+    s.bitangent = directionToWorld(inst, bitangent);
   } else if (s.hasUv && determinant != 0.0f) {
-    s.tangent = objectToWorldDirection(inst, (e1 * dv2 - e2 * dv1) / determinant);
-    s.bitangent = -objectToWorldDirection(inst, (e2 * du1 - e1 * du2) / determinant);
+    s.tangent = directionToWorld(inst, (e1 * dv2 - e2 * dv1) / determinant);
+    s.bitangent = -directionToWorld(inst, (e2 * du1 - e1 * du2) / determinant);
   } else {
     s.tangent = make_vec3(0.0f, 0.0f, 0.0f);
     s.bitangent = make_vec3(0.0f, 0.0f, 0.0f);

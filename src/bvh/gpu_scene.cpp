@@ -21,10 +21,9 @@
 namespace wp {
 namespace {
 
-// A path down each level, plus the two entries a bottom-level visit may push while its lane
+// A path down a level, plus the two entries a bottom-level visit may push while its lane
 // holds a postponed leaf.
-static_assert(2 * WP_BVH_MAX_DEPTH + 2 <= WP_TRAVERSAL_STACK_SIZE,
-              "the traversal stack must hold a top-level and a bottom-level path");
+static_assert(WP_BVH_MAX_DEPTH + 2 <= WP_LEVEL_STACK_SIZE, "a traversal stack must hold a path down its level");
 
 constexpr uint32_t kMeshLeafSize = WP_MAX_LEAF_TRIANGLES;
 // One instance per top-level leaf: an instance test (transform plus a whole bottom-level
@@ -33,7 +32,7 @@ constexpr uint32_t kInstanceLeafSize = 1;
 
 using Clock = std::chrono::steady_clock;
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+using gpu::luminance;
 
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
