@@ -916,7 +916,9 @@ TEST(SceneUpdater, MatchesPackSceneOfThePose) {
       }
       EXPECT_EQ(got.boundsMin, want.boundsMin);
       EXPECT_EQ(got.boundsMax, want.boundsMax);
-      EXPECT_EQ(got.sky.transform, want.sky.transform);
+      EXPECT_EQ(got.sky.intensity, want.sky.intensity);
+      EXPECT_EQ(got.sky.rotation, want.sky.rotation);
+      EXPECT_EQ(got.sky.selectionProbability, want.sky.selectionProbability);
       EXPECT_EQ(got.triangles.size(), want.triangles.size());
       for (size_t m = 1; m < got.meshes.size(); ++m) {  // static meshes keep their triangles
         EXPECT_TRUE(std::equal(got.triangles.begin() + got.meshes[m].firstTriangle,

@@ -123,7 +123,7 @@ TEST(EnvironmentLookup, EvalMatchesTheTexel) {
   for (const Sky& sky : {gradientSky(), sunSky(), rotatedSky()})
     for (uint32_t y = 0; y < sky.map.height; ++y)
       for (uint32_t x = 0; x < sky.map.width; ++x) {
-        glm::vec3 expected = glm::vec3(sky.map.radiance[y * sky.map.width + x]) * sky.env.transform.x;
+        glm::vec3 expected = glm::vec3(sky.map.radiance[y * sky.map.width + x]) * sky.env.intensity;
         ASSERT_EQ(sky.radiance(sky.texelCentre(x, y)), expected) << x << " " << y;
       }
 }

@@ -39,14 +39,20 @@ WP_BEGIN
 
 WP_FN GpuEnvironment makeEnvironment(uint width, uint height, float intensity, float rotation) {
   GpuEnvironment env;
-  env.transform = make_vec4(intensity, rotation, 0.0f, 0.0f);
-  env.size = make_uvec4(width, height, 0u, 0u);
+  env.intensity = intensity;
+  env.rotation = rotation;
+  env.selectionProbability = 0.0f;
+  env.unused0 = 0.0f;
+  env.width = width;
+  env.height = height;
+  env.unused1 = 0u;
+  env.unused2 = 0u;
   return env;
 }
 
 // Map coordinates (u, v) in [0, 1]^2 of the world direction `direction` (unit).
 WP_FN vec2 environmentUv(GpuEnvironment env, vec3 direction) {
-  float u = 0.5f + (wpAtan2(direction.x, -direction.z) + env.transform.y) * (0.5f * WP_INV_PI);
+  float u = 0.5f + (wpAtan2(direction.x, -direction.z) + env.rotation) * (0.5f * WP_INV_PI);
   u = u - floor(u);
   // theta from atan2 rather than acos(y): near the poles y = cos(theta) has lost theta's
   // digits, while the horizontal length still holds sin(theta) to full precision.
@@ -56,7 +62,7 @@ WP_FN vec2 environmentUv(GpuEnvironment env, vec3 direction) {
 
 // The unit world direction at map coordinates (u, v): the inverse of environmentUv.
 WP_FN vec3 environmentDirection(GpuEnvironment env, vec2 uv) {
-  float phi = 2.0f * WP_PI * (uv.x - 0.5f) - env.transform.y;
+  float phi = 2.0f * WP_PI * (uv.x - 0.5f) - env.rotation;
   float theta = WP_PI * uv.y;
   float sinTheta = sin(theta);
   return make_vec3(sinTheta * sin(phi), cos(theta), -sinTheta * cos(phi));
@@ -64,26 +70,26 @@ WP_FN vec3 environmentDirection(GpuEnvironment env, vec2 uv) {
 
 // Index (row * width + column) of the texel holding (u, v).
 WP_FN uint environmentTexel(GpuEnvironment env, vec2 uv) {
-  uint column = min(toUint(uv.x * toFloat(env.size.x)), env.size.x - 1u);
-  uint row = min(toUint(uv.y * toFloat(env.size.y)), env.size.y - 1u);
-  return row * env.size.x + column;
+  uint column = min(toUint(uv.x * toFloat(env.width)), env.width - 1u);
+  uint row = min(toUint(uv.y * toFloat(env.height)), env.height - 1u);
+  return row * env.width + column;
 }
 
 // Sky radiance seen along `direction` (unit), intensity included: the nearest texel.
 WP_FN vec3 environmentRadiance(WP_BUFFERS GpuEnvironment env, vec3 direction) {
   vec4 texel = WP_LOAD(skyRadiance, environmentTexel(env, environmentUv(env, direction)));
-  return make_vec3(texel.x, texel.y, texel.z) * env.transform.x;
+  return make_vec3(texel.x, texel.y, texel.z) * env.intensity;
 }
 
 // Density over (u, v) of choosing texel `texel`: its row's marginal probability times its
 // column's conditional one, over the area of a texel in (u, v).
 WP_FN float environmentUvPdf(WP_BUFFERS GpuEnvironment env, uint texel) {
-  uint row = texel / env.size.x;
-  uint column = texel - row * env.size.x;
-  uint base = row * (env.size.x + 1u);
+  uint row = texel / env.width;
+  uint column = texel - row * env.width;
+  uint base = row * (env.width + 1u);
   float rowProbability = WP_LOAD(skyMarginal, row + 1u) - WP_LOAD(skyMarginal, row);
   float columnProbability = WP_LOAD(skyConditional, base + column + 1u) - WP_LOAD(skyConditional, base + column);
-  return rowProbability * columnProbability * toFloat(env.size.x) * toFloat(env.size.y);
+  return rowProbability * columnProbability * toFloat(env.width) * toFloat(env.height);
 }
 
 // Solid-angle density of sampleEnvironment choosing `direction` (unit): the (u, v) density
@@ -132,8 +138,8 @@ WP_FN uint findEnvironmentTexel(WP_BUFFERS uint width, uint height, vec2 u) {
 // angle and excludes the choice between the sky and other lights; distance is WP_FLT_MAX
 // (the shadow ray runs to infinity); radiance includes the intensity.
 WP_FN LightSample sampleEnvironment(WP_BUFFERS GpuEnvironment env, vec2 u) {
-  uint width = env.size.x;
-  uint height = env.size.y;
+  uint width = env.width;
+  uint height = env.height;
   uint texel = findEnvironmentTexel(WP_BUFFERS_ARG width, height, u);
   uint row = texel / width;
   uint column = texel - row * width;
@@ -152,7 +158,7 @@ WP_FN LightSample sampleEnvironment(WP_BUFFERS GpuEnvironment env, vec2 u) {
   s.direction = environmentDirection(env, uv);
   s.distance = WP_FLT_MAX;
   vec4 radiance = WP_LOAD(skyRadiance, texel);
-  s.radiance = make_vec3(radiance.x, radiance.y, radiance.z) * env.transform.x;
+  s.radiance = make_vec3(radiance.x, radiance.y, radiance.z) * env.intensity;
   float uvPdf = environmentUvPdf(WP_BUFFERS_ARG env, texel);
   s.pdf = sinTheta > 0.0f ? uvPdf / (2.0f * WP_PI * WP_PI * sinTheta) : 0.0f;
   return s;

@@ -31,24 +31,25 @@ WP_STRUCT_END(ShadeResult)
 
 WP_FN vec3 xyz(vec4 v) { return make_vec3(v.x, v.y, v.z); }
 
-// The biased contribution clamp (RenderParams.shading.y, 0 = off) on what a path adds
-// after its first vertex; light seen directly by the camera is never clamped.
+// The biased contribution clamp (RenderParams.contributionClamp, 0 = off) on what a path
+// adds after its first vertex; light seen directly by the camera is never clamped.
 WP_FN vec3 clampedContribution(RenderParams params, vec3 c) {
-  float limit = asFloat(params.shading.y);
+  float limit = params.contributionClamp;
   return limit > 0.0f ? clampContribution(c, limit) : c;
 }
 
 // A ray that left the scene sees the sky. Next event estimation samples the sky with
-// probability sky.transform.z, so a BSDF-sampled ray's sky radiance is weighed against that.
+// probability sky.selectionProbability, so a BSDF-sampled ray's sky radiance is weighed
+// against that.
 WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
   ShadeResult r;
   r.flags = 0u;
-  vec3 direction = xyz(ray.direction);
-  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays: nothing to weigh against
-  float skyChoice = params.sky.transform.z;
+  vec3 direction = rayDirection(ray);
+  float bsdfPdfOfRay = rayBsdfPdf(ray);  // 0 for camera rays: nothing to weigh against
+  float skyChoice = params.sky.selectionProbability;
   float weight = 1.0f;
   if (bsdfPdfOfRay > 0.0f && skyChoice > 0.0f) {
-    uint mode = params.mode.y;
+    uint mode = params.mode;
     if (mode == WP_MODE_NEE) {
       weight = 0.0f;
     } else if (mode == WP_MODE_MIS) {
@@ -56,8 +57,8 @@ WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
       weight = balanceHeuristic(bsdfPdfOfRay, skyPdf);
     }
   }
-  r.radiance = xyz(ray.throughput) * environmentRadiance(WP_BUFFERS_ARG params.sky, direction) * weight;
-  if (ray.state.y > 0u) {
+  r.radiance = rayThroughput(ray) * environmentRadiance(WP_BUFFERS_ARG params.sky, direction) * weight;
+  if (rayBounce(ray) > 0u) {
     r.radiance = clampedContribution(params, r.radiance);
   }
   return r;
@@ -115,7 +116,7 @@ WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) 
 }
 
 // Bounce numbering follows Cycles' "max bounces": the camera ray hits the vertex of bounce
-// 0, and with params.mode.x = D the path gathers light at vertices 0..D (next event
+// 0, and with params.maxBounces = D the path gathers light at vertices 0..D (next event
 // estimation there, or emission found by the ray leaving them), so D = 0 is direct light.
 //
 // Delta lobes (smooth mirror and glass) cannot be light-sampled: evalBsdf gives them no
@@ -130,19 +131,19 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   ShadeResult r;
   r.flags = 0u;
   r.radiance = make_vec3(0.0f, 0.0f, 0.0f);
-  vec3 direction = xyz(ray.direction);
-  vec3 throughput = xyz(ray.throughput);
-  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays and delta samples: nothing to weigh against
-  uint rng = ray.state.x;
-  uint bounce = ray.state.y;
-  uint maxBounces = params.mode.x;
-  uint mode = params.mode.y;
-  uint lightCount = params.mode.w;
-  uint bsdfFlags = params.shading.x;
-  uint lightSelection = params.shading.z;
+  vec3 direction = rayDirection(ray);
+  vec3 throughput = rayThroughput(ray);
+  float bsdfPdfOfRay = rayBsdfPdf(ray);  // 0 for camera rays and delta samples: nothing to weigh against
+  uint rng = rayRngState(ray);
+  uint bounce = rayBounce(ray);
+  uint maxBounces = params.maxBounces;
+  uint mode = params.mode;
+  uint lightCount = params.lightCount;
+  uint bsdfFlags = params.bsdfFlags;
+  uint lightSelection = params.lightSelection;
 
-  float time = ray.throughput.w;
-  SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, xyz(ray.origin) + direction * t, time);
+  float time = rayTime(ray);
+  SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, time);
   GpuMaterial m = texturedMaterial(WP_BUFFERS_ARG WP_LOAD(materials, s.material), s);
   s.shadingNormal = normalMapped(WP_BUFFERS_ARG m, s);
   vec3 wo = -direction;
@@ -161,9 +162,9 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
         // The selection probability as seen from the previous vertex (the ray's origin),
         // times the chance that next event estimation chose the triangles over the sky.
         GpuLight light = WP_LOAD(lights, s.light);
-        float selection = (1.0f - params.sky.transform.z) *
+        float selection = (1.0f - params.sky.selectionProbability) *
                           lightSelectionProbability(WP_BUFFERS_ARG lightCount, lightSelection, light,
-                                                    xyz(ray.origin));
+                                                    rayOrigin(ray));
         weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
       }
     }
@@ -186,7 +187,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   Frame frame = makeFrame(shadingNormal);
   vec3 woLocal = frameToLocal(frame, wo);
 
-  float skyChoice = params.sky.transform.z;
+  float skyChoice = params.sky.selectionProbability;
   if (mode != WP_MODE_BSDF && (lightCount > 0u || skyChoice > 0.0f)) {
     RngDraw3 lightDraw = rngFloat3(rng);
     rng = lightDraw.state;
@@ -233,7 +234,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   if (bounce < maxBounces || mode != WP_MODE_NEE || isDelta) {
     vec3 nextThroughput = throughput * bs.weight;
     float survival = 1.0f;
-    if (bounce >= params.mode.z) {
+    if (bounce >= params.rouletteStart) {
       // Russian roulette: keep the path with probability max(throughput), clamped to 1.
       survival = min(1.0f, maxComponent(nextThroughput));
       rng = rngNext(rng);
@@ -247,10 +248,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
       vec3 origin = offsetRayOrigin(s.position, s.normal, wi);
       nextThroughput = nextThroughput / survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;
-      r.next.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
-      r.next.direction = make_vec4(wi.x, wi.y, wi.z, rayPdf);
-      r.next.throughput = make_vec4(nextThroughput.x, nextThroughput.y, nextThroughput.z, time);
-      r.next.state = make_uvec4(rng, bounce + 1u, 0u, 0u);
+      r.next = makePathRay(origin, rayPathSlot(ray), wi, rayPdf, nextThroughput, time, rng, bounce + 1u);
       r.flags |= WP_SHADE_EXTEND;
     }
   }

@@ -1,9 +1,12 @@
 // GPU buffer structs and workgroup sizes shared by host, GLSL and OpenCL. Every struct is
-// made of 16-byte vec4/uvec4 fields so std430, OpenCL and C++ agree on the layout; the host
-// checks sizes with static_assert (src/render/gpu_layout_check.cpp). A struct that a stage
-// reads from a buffer is a record: its fields are listed once, F(type, name) in
-// WP_FIELDS_<Name>, from which WP_RECORD declares it and the Vulkan stages generate its
-// texel loader (binding_table.h says which buffer holds which record).
+// made of 16-byte vec4/uvec4 fields, or of 4-byte scalars in groups of four, so std140,
+// std430, OpenCL and C++ agree on the layout; the host checks sizes and offsets with
+// static_assert (src/render/gpu_layout_check.cpp). A struct that a stage reads from a buffer
+// is a record: its fields are listed once, F(type, name) in WP_FIELDS_<Name>, from which
+// WP_RECORD declares it and the Vulkan stages generate its texel loader (binding_table.h
+// says which buffer holds which record). Records pack several values into a vec4; code
+// reads them through the named accessors that follow each record (rayBounce(ray), never
+// ray.state.y), the same names in GLSL, OpenCL C and C++.
 #ifndef WP_LAYOUT_H
 #define WP_LAYOUT_H
 
@@ -14,16 +17,16 @@ WP_BEGIN
 
 #define WP_WORKGROUP_SIZE 64
 
-// Integrator modes (RenderParams.mode.y).
+// Integrator modes (RenderParams.mode).
 #define WP_MODE_MIS 0u
 #define WP_MODE_NEE 1u
 #define WP_MODE_BSDF 2u
 
-// Light selection for next event estimation (RenderParams.shading.z).
+// Light selection for next event estimation (RenderParams.lightSelection).
 #define WP_LIGHT_SELECTION_POWER 0u        // alias table by emitted power
 #define WP_LIGHT_SELECTION_SOLID_ANGLE 1u  // by subtended solid angle times luminance (lights.h)
 
-// GpuInstance.info.x: what the instance is.
+// What an instance is (instanceKind).
 #define WP_INSTANCE_MESH 0u
 #define WP_INSTANCE_SPHERE 1u  // unit sphere at the object-space origin
 
@@ -43,6 +46,14 @@ WP_BEGIN
   F(vec4, rightMin)          \
   F(vec4, rightMax)
 WP_RECORD(BvhNode)
+WP_FN vec3 nodeLeftMin(BvhNode n) { return make_vec3(n.leftMin.x, n.leftMin.y, n.leftMin.z); }
+WP_FN vec3 nodeLeftMax(BvhNode n) { return make_vec3(n.leftMax.x, n.leftMax.y, n.leftMax.z); }
+WP_FN uint nodeLeftIndex(BvhNode n) { return asUint(n.leftMin.w); }
+WP_FN uint nodeLeftCount(BvhNode n) { return asUint(n.leftMax.w); }
+WP_FN vec3 nodeRightMin(BvhNode n) { return make_vec3(n.rightMin.x, n.rightMin.y, n.rightMin.z); }
+WP_FN vec3 nodeRightMax(BvhNode n) { return make_vec3(n.rightMax.x, n.rightMax.y, n.rightMax.z); }
+WP_FN uint nodeRightIndex(BvhNode n) { return asUint(n.rightMin.w); }
+WP_FN uint nodeRightCount(BvhNode n) { return asUint(n.rightMax.w); }
 
 // Triangle in object space, stored in BVH leaf order: 64 bytes.
 //   v0: xyz: vertex 0
@@ -55,6 +66,13 @@ WP_RECORD(BvhNode)
   F(vec4, edge2)                 \
   F(uvec4, info)
 WP_RECORD(GpuTriangle)
+WP_FN vec3 triangleVertex0(GpuTriangle t) { return make_vec3(t.v0.x, t.v0.y, t.v0.z); }
+WP_FN vec3 triangleEdge1(GpuTriangle t) { return make_vec3(t.edge1.x, t.edge1.y, t.edge1.z); }
+WP_FN vec3 triangleEdge2(GpuTriangle t) { return make_vec3(t.edge2.x, t.edge2.y, t.edge2.z); }
+WP_FN uint triangleMaterial(GpuTriangle t) { return t.info.x; }
+// Its ordinal among its mesh's emitters (its light is the instance's first light plus it),
+// or WP_INVALID.
+WP_FN uint triangleEmitter(GpuTriangle t) { return t.info.y; }
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
 // light samples, for the emissive texture), so the traversal's triangle records stay 64
@@ -76,6 +94,21 @@ WP_RECORD(GpuTriangle)
   F(vec4, tangent1)                     \
   F(vec4, tangent2)
 WP_RECORD(GpuTriangleShading)
+WP_FN vec3 vertexNormal0(GpuTriangleShading s) { return make_vec3(s.normal0.x, s.normal0.y, s.normal0.z); }
+WP_FN vec3 vertexNormal1(GpuTriangleShading s) { return make_vec3(s.normal1.x, s.normal1.y, s.normal1.z); }
+WP_FN vec3 vertexNormal2(GpuTriangleShading s) { return make_vec3(s.normal2.x, s.normal2.y, s.normal2.z); }
+WP_FN vec2 vertexUv0(GpuTriangleShading s) { return make_vec2(s.normal0.w, s.v.x); }
+WP_FN vec2 vertexUv1(GpuTriangleShading s) { return make_vec2(s.normal1.w, s.v.y); }
+WP_FN vec2 vertexUv2(GpuTriangleShading s) { return make_vec2(s.normal2.w, s.v.z); }
+WP_FN bool hasUv(GpuTriangleShading s) { return s.v.w != 0.0f; }
+// COLOR_0 as RGBA8 (r in the low byte).
+WP_FN uint vertexColor0(GpuTriangleShading s) { return s.colors.x; }
+WP_FN uint vertexColor1(GpuTriangleShading s) { return s.colors.y; }
+WP_FN uint vertexColor2(GpuTriangleShading s) { return s.colors.z; }
+// xyz: the tangent, w: the bitangent's sign.
+WP_FN vec4 vertexTangent0(GpuTriangleShading s) { return s.tangent0; }
+WP_FN vec4 vertexTangent1(GpuTriangleShading s) { return s.tangent1; }
+WP_FN vec4 vertexTangent2(GpuTriangleShading s) { return s.tangent2; }
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
 #define WP_TEXTURE_WRAP_REPEAT 0u
@@ -89,6 +122,13 @@ WP_RECORD(GpuTriangleShading)
 #define WP_FIELDS_GpuTexture(F) \
   F(uvec4, info)
 WP_RECORD(GpuTexture)
+WP_FN uint textureFirstTexel(GpuTexture t) { return t.info.x; }
+WP_FN uint textureWidth(GpuTexture t) { return t.info.y; }
+WP_FN uint textureHeight(GpuTexture t) { return t.info.z; }
+WP_FN uint textureWrapS(GpuTexture t) { return t.info.w & 3u; }
+WP_FN uint textureWrapT(GpuTexture t) { return (t.info.w >> 2u) & 3u; }
+WP_FN bool textureIsSrgb(GpuTexture t) { return (t.info.w & WP_TEXTURE_SRGB) != 0u; }
+WP_FN bool textureIsNearest(GpuTexture t) { return (t.info.w & WP_TEXTURE_NEAREST) != 0u; }
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
 //   worldToObject0..2: rows of the 3x4 world-to-object matrix (at shutter open if it moves)
@@ -102,6 +142,11 @@ WP_RECORD(GpuTexture)
   F(vec4, worldToObject2)        \
   F(uvec4, info)
 WP_RECORD(GpuInstance)
+WP_FN uint instanceKind(GpuInstance inst) { return inst.info.x; }  // WP_INSTANCE_*
+WP_FN uint instanceBvhRoot(GpuInstance inst) { return inst.info.y; }
+WP_FN uint instanceSphereMaterial(GpuInstance inst) { return inst.info.y; }
+WP_FN uint instanceFirstLight(GpuInstance inst) { return inst.info.z; }
+WP_FN uint instanceMotionKeys(GpuInstance inst) { return inst.info.w; }
 
 // A moving instance's placement at shutter open and at shutter close is kept as two motion
 // keys, stored after the placed instances in the instance buffer in GpuInstance records (so
@@ -110,6 +155,13 @@ WP_RECORD(GpuInstance)
 // (a transform with shear) the rows of the 3x4 object-to-world matrix. info.x says which.
 #define WP_MOTION_KEY_TRS 0u
 #define WP_MOTION_KEY_MATRIX 1u
+WP_FN uint motionKeyKind(GpuInstance key) { return key.info.x; }  // WP_MOTION_KEY_*
+WP_FN vec4 motionKeyTranslation(GpuInstance key) { return key.worldToObject0; }  // xyz
+WP_FN vec4 motionKeyRotation(GpuInstance key) { return key.worldToObject1; }
+WP_FN vec4 motionKeyScale(GpuInstance key) { return key.worldToObject2; }  // xyz
+WP_FN vec4 motionKeyRow0(GpuInstance key) { return key.worldToObject0; }
+WP_FN vec4 motionKeyRow1(GpuInstance key) { return key.worldToObject1; }
+WP_FN vec4 motionKeyRow2(GpuInstance key) { return key.worldToObject2; }
 
 // Infinite plane dot(n, p) = d, 32 bytes.
 //   normalDistance: xyz: unit normal, w: d
@@ -118,6 +170,9 @@ WP_RECORD(GpuInstance)
   F(vec4, normalDistance)     \
   F(uvec4, info)
 WP_RECORD(GpuPlane)
+WP_FN vec3 planeNormal(GpuPlane p) { return make_vec3(p.normalDistance.x, p.normalDistance.y, p.normalDistance.z); }
+WP_FN float planeDistance(GpuPlane p) { return p.normalDistance.w; }
+WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
 
 // GpuMaterial.info.x: which BSDF the material has.
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
@@ -163,24 +218,40 @@ WP_RECORD(GpuMaterial)
   F(uvec4, info)
 WP_RECORD(GpuLight)
 
-// Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
+// Settings of the sky, 32 bytes for a uniform or constant buffer.
 WP_STRUCT(GpuEnvironment)
-  vec4 transform;  // x: intensity (radiance multiplier); y: rotation about +y, radians;
-                   // z: probability that next event estimation samples the sky rather than
-                   // the emissive triangles; w: unused
-  uvec4 size;      // x: width, y: height (texels); z, w: unused
+  float intensity;  // radiance multiplier
+  float rotation;   // about +y, radians
+  // Probability that next event estimation samples the sky rather than the emissive
+  // triangles.
+  float selectionProbability;
+  float unused0;
+  uint width;  // texels
+  uint height;
+  uint unused1;
+  uint unused2;
 WP_STRUCT_END(GpuEnvironment)
 
 // Per-frame settings, a uniform buffer (OpenCL: a constant argument).
 WP_STRUCT(RenderParams)
-  ThinLens camera;      // optics and placement of the camera (thin_lens.h)
-  GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
-  uvec4 image;          // x: width, y: height, z: pixel count, w: seed
-  uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
-                        // w: number of lights
-  uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
-  uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
-                        // z: WP_LIGHT_SELECTION_*, w: unused
+  ThinLens camera;     // optics and placement of the camera (thin_lens.h)
+  GpuEnvironment sky;  // the sky seen by rays that leave the scene (environment.h)
+  uint width;          // of the image, in pixels
+  uint height;
+  uint pixelCount;
+  uint seed;
+  uint maxBounces;     // counted as Cycles counts them (integrator.h)
+  uint mode;           // WP_MODE_*
+  uint rouletteStart;  // the first bounce at which Russian roulette may end a path
+  uint lightCount;     // emissive triangles in the light table
+  uint planeCount;
+  uint tlasRoot;       // the top-level BVH's root node
+  uint instanceCount;  // placed instances
+  uint maxPaths;       // paths of a pass at most: the length of each queue
+  uint bsdfFlags;      // WP_BSDF_*
+  float contributionClamp;  // biased clamp on what a path adds after its first vertex; 0: off
+  uint lightSelection;      // WP_LIGHT_SELECTION_*
+  uint unused;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
@@ -194,6 +265,25 @@ WP_STRUCT_END(RenderParams)
   F(vec4, throughput)        \
   F(uvec4, state)
 WP_RECORD(PathRay)
+WP_FN vec3 rayOrigin(PathRay r) { return make_vec3(r.origin.x, r.origin.y, r.origin.z); }
+WP_FN uint rayPathSlot(PathRay r) { return asUint(r.origin.w); }
+WP_FN vec3 rayDirection(PathRay r) { return make_vec3(r.direction.x, r.direction.y, r.direction.z); }
+// The solid-angle pdf of the BSDF sample that chose the direction; 0 for camera rays and
+// delta samples (nothing to weigh emission against).
+WP_FN float rayBsdfPdf(PathRay r) { return r.direction.w; }
+WP_FN vec3 rayThroughput(PathRay r) { return make_vec3(r.throughput.x, r.throughput.y, r.throughput.z); }
+WP_FN float rayTime(PathRay r) { return r.throughput.w; }
+WP_FN uint rayRngState(PathRay r) { return r.state.x; }
+WP_FN uint rayBounce(PathRay r) { return r.state.y; }
+WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
+                          uint rngState, uint bounce) {
+  PathRay r;
+  r.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
+  r.direction = make_vec4(direction.x, direction.y, direction.z, bsdfPdf);
+  r.throughput = make_vec4(throughput.x, throughput.y, throughput.z, time);
+  r.state = make_uvec4(rngState, bounce, 0u, 0u);
+  return r;
+}
 
 // Closest hit of the PathRay at the same queue position: 16 bytes.
 //   hit: x: asUint(t) (WP_INVALID: miss), y: instance or plane index | WP_HIT_PLANE, z:
@@ -202,6 +292,16 @@ WP_RECORD(PathRay)
   F(uvec4, hit)
 WP_RECORD(HitRecord)
 #define WP_HIT_PLANE 0x80000000u
+WP_FN bool hitIsMiss(HitRecord h) { return h.hit.x == WP_INVALID; }
+WP_FN float hitDistance(HitRecord h) { return asFloat(h.hit.x); }
+WP_FN uint hitInstanceField(HitRecord h) { return h.hit.y; }  // instance, or plane | WP_HIT_PLANE
+WP_FN uint hitPrimitive(HitRecord h) { return h.hit.z; }
+// A hit at distance t, or a miss where instanceField is WP_INVALID.
+WP_FN HitRecord makeHitRecord(float t, uint instanceField, uint primitive) {
+  HitRecord h;
+  h.hit = make_uvec4(instanceField == WP_INVALID ? WP_INVALID : asUint(t), instanceField, primitive, 0u);
+  return h;
+}
 
 // Next-event-estimation shadow ray: 48 bytes.
 //   origin: xyz; w: asFloat(path slot)
@@ -212,6 +312,14 @@ WP_RECORD(HitRecord)
   F(vec4, direction)           \
   F(vec4, contribution)
 WP_RECORD(ShadowRay)
+WP_FN vec3 shadowRayOrigin(ShadowRay s) { return make_vec3(s.origin.x, s.origin.y, s.origin.z); }
+WP_FN uint shadowRayPathSlot(ShadowRay s) { return asUint(s.origin.w); }
+WP_FN vec3 shadowRayDirection(ShadowRay s) { return make_vec3(s.direction.x, s.direction.y, s.direction.z); }
+WP_FN float shadowRayLength(ShadowRay s) { return s.direction.w; }
+WP_FN vec3 shadowRayContribution(ShadowRay s) {
+  return make_vec3(s.contribution.x, s.contribution.y, s.contribution.z);
+}
+WP_FN float shadowRayTime(ShadowRay s) { return s.contribution.w; }
 
 // Queue sizes and indirect dispatch arguments, written on the GPU. Kernels address it as a
 // flat uint array (atomics need a plain uint lvalue) through the word indices below.
@@ -228,13 +336,18 @@ WP_STRUCT_END(QueueCounters)
 #define WP_COUNTER_EXTEND_DISPATCH 8u
 #define WP_COUNTER_CONNECT_DISPATCH 12u
 #define WP_COUNTER_WORDS 16u
+WP_FN uint tracedRays(QueueCounters c) { return c.totals.x; }
+WP_FN uint tracedShadowRays(QueueCounters c) { return c.totals.y; }
 
 // Per-dispatch constants (Vulkan push constants, OpenCL kernel arguments). A pass traces
 // `pathCount` paths: path slot i is pixel (firstPixel + i) % pixels of sample
 // firstSample + (firstPixel + i) / pixels, so a pass may span several samples of a small
 // image while every slot of one pixel is accumulated in sample order.
 WP_STRUCT(PassConstants)
-  uvec4 pass;  // x: firstPixel, y: firstSample, z: pathCount, w: bounce
+  uint firstPixel;
+  uint firstSample;
+  uint pathCount;
+  uint bounce;  // of the extend, shade, advance or connect it is passed to
 WP_STRUCT_END(PassConstants)
 
 WP_END

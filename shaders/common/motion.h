@@ -45,16 +45,16 @@ WP_FN AffineRows trsRows(vec3 t, vec4 q, vec3 s) {
 // and close (layout.h, GpuInstance of a motion key): translation and scale linear, rotation
 // by slerp; keys of a transform with shear hold matrix rows, lerped component-wise.
 WP_FN AffineRows objectToWorldAt(GpuInstance open, GpuInstance close, float u) {
-  if (open.info.x == WP_MOTION_KEY_MATRIX) {
+  if (motionKeyKind(open) == WP_MOTION_KEY_MATRIX) {
     AffineRows m;
-    m.row0 = open.worldToObject0 + (close.worldToObject0 - open.worldToObject0) * u;
-    m.row1 = open.worldToObject1 + (close.worldToObject1 - open.worldToObject1) * u;
-    m.row2 = open.worldToObject2 + (close.worldToObject2 - open.worldToObject2) * u;
+    m.row0 = motionKeyRow0(open) + (motionKeyRow0(close) - motionKeyRow0(open)) * u;
+    m.row1 = motionKeyRow1(open) + (motionKeyRow1(close) - motionKeyRow1(open)) * u;
+    m.row2 = motionKeyRow2(open) + (motionKeyRow2(close) - motionKeyRow2(open)) * u;
     return m;
   }
-  vec4 t = open.worldToObject0 + (close.worldToObject0 - open.worldToObject0) * u;
-  vec4 s = open.worldToObject2 + (close.worldToObject2 - open.worldToObject2) * u;
-  return trsRows(make_vec3(t.x, t.y, t.z), slerpQuaternion(open.worldToObject1, close.worldToObject1, u),
+  vec4 t = motionKeyTranslation(open) + (motionKeyTranslation(close) - motionKeyTranslation(open)) * u;
+  vec4 s = motionKeyScale(open) + (motionKeyScale(close) - motionKeyScale(open)) * u;
+  return trsRows(make_vec3(t.x, t.y, t.z), slerpQuaternion(motionKeyRotation(open), motionKeyRotation(close), u),
                  make_vec3(s.x, s.y, s.z));
 }
 
@@ -84,9 +84,9 @@ WP_FN GpuInstance instanceWithTransform(GpuInstance inst, AffineRows m) {
 WP_FN GpuInstance instanceAt(WP_BUFFERS uint i, float u) {
   GpuInstance inst = WP_LOAD(instances, i);
 #ifdef WP_MOTION_BLUR
-  if (inst.info.w != WP_INVALID) {
-    inst = instanceWithTransform(
-        inst, objectToWorldAt(WP_LOAD(instances, inst.info.w), WP_LOAD(instances, inst.info.w + 1u), u));
+  uint keys = instanceMotionKeys(inst);
+  if (keys != WP_INVALID) {
+    inst = instanceWithTransform(inst, objectToWorldAt(WP_LOAD(instances, keys), WP_LOAD(instances, keys + 1u), u));
   }
 #endif
   return inst;

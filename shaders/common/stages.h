@@ -20,12 +20,12 @@ WP_BEGIN
 // aperture, at a shutter time uniform in [0, 1), with the path's random stream seeded from
 // (pixel, sample, seed).
 WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
-  uint pixels = params.image.z;
-  uint linear = pc.pass.x + slot;
+  uint pixels = params.pixelCount;
+  uint linear = pc.firstPixel + slot;
   uint pixel = linear % pixels;
-  uint sampleIndex = pc.pass.y + linear / pixels;
+  uint sampleIndex = pc.firstSample + linear / pixels;
 
-  uint rng = rngSeed(pixel, sampleIndex, params.image.w);
+  uint rng = rngSeed(pixel, sampleIndex, params.seed);
   float time = rngTime(rng);
   rng = rngNext(rng);
   float jx = rngFloat(rng);
@@ -35,40 +35,31 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   float lensU = rngFloat(rng);
   rng = rngNext(rng);
   float lensV = rngFloat(rng);
-  uint width = params.image.x;
+  uint width = params.width;
   vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
-  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.image.y, make_vec2(lensU, lensV));
-
-  PathRay ray;
-  ray.origin = make_vec4(camera.origin.x, camera.origin.y, camera.origin.z, asFloat(slot));
-  ray.direction = make_vec4(camera.direction.x, camera.direction.y, camera.direction.z, 0.0f);
-  ray.throughput = make_vec4(1.0f, 1.0f, 1.0f, time);
-  ray.state = make_uvec4(rng, 0u, 0u, 0u);
-  return ray;
+  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, make_vec2(lensU, lensV));
+  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u);
 }
-
-// The path slot a ray or shadow ray belongs to (kept in origin.w).
-WP_FN uint pathSlot(vec4 origin) { return asUint(origin.w); }
 
 // The closest hit of `ray`, as shade reads it.
 WP_FN HitRecord extendRay(WP_BUFFERS RenderParams params, PathRay ray) {
-  Hit h = traceClosest(WP_BUFFERS_ARG params.counts.y, params.counts.x, xyz(ray.origin), xyz(ray.direction),
-                       WP_FLT_MAX, ray.throughput.w);
-  HitRecord record;
-  record.hit = make_uvec4(h.instance == WP_INVALID ? WP_INVALID : asUint(h.t), h.instance, h.primitive, 0u);
-  return record;
+  Hit h = traceClosest(WP_BUFFERS_ARG params.tlasRoot, params.planeCount, rayOrigin(ray), rayDirection(ray),
+                       WP_FLT_MAX, rayTime(ray));
+  return makeHitRecord(h.t, h.instance, h.primitive);
 }
 
 // The vertex `ray` reached (or the sky it left to), from its hit record.
-WP_FN ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, uvec4 hit) {
-  return hit.x == WP_INVALID ? shadeMiss(WP_BUFFERS_ARG params, ray)
-                             : shadeHit(WP_BUFFERS_ARG params, ray, asFloat(hit.x), hit.y, hit.z);
+WP_FN ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, HitRecord hit) {
+  if (hitIsMiss(hit)) {
+    return shadeMiss(WP_BUFFERS_ARG params, ray);
+  }
+  return shadeHit(WP_BUFFERS_ARG params, ray, hitDistance(hit), hitInstanceField(hit), hitPrimitive(hit));
 }
 
 // Whether nothing blocks the shadow ray before its light sample.
 WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
-  return !traceAny(WP_BUFFERS_ARG params.counts.y, params.counts.x, xyz(s.origin), xyz(s.direction),
-                   s.direction.w, s.contribution.w);
+  return !traceAny(WP_BUFFERS_ARG params.tlasRoot, params.planeCount, shadowRayOrigin(s), shadowRayDirection(s),
+                   shadowRayLength(s), shadowRayTime(s));
 }
 
 WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_BUFFER(pathRadiance)[slot], radiance); }
@@ -76,8 +67,8 @@ WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_
 // Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue,
 // and the path's radiance cleared; the first work item also starts the pass's queues.
 WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
-  uint pathCount = pc.pass.z;
-  uint maxPaths = params.counts.w;
+  uint pathCount = pc.pathCount;
+  uint maxPaths = params.maxPaths;
   if (slot == 0u) {
     startPassQueues(WP_BUFFERS_ARG pathCount, maxPaths);
   }
@@ -90,7 +81,7 @@ WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint 
 
 // Extend, work item `i`: the closest hit of entry i of the bounce's ray queue, into hits[i].
 WP_FN void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
-  WorkQueue queue = rayQueue(pc.pass.w, params.counts.w);
+  WorkQueue queue = rayQueue(pc.bounce, params.maxPaths);
   if (i >= queueSize(WP_BUFFERS_ARG queue)) {
     return;
   }
@@ -101,17 +92,17 @@ WP_FN void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i)
 // reached, its radiance added to the path. The kernel appends the continuation and the
 // shadow ray the result holds to continuationQueue and shadowQueue.
 WP_FN ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
-  PathRay ray = WP_LOAD(rays, queueEntry(rayQueue(pc.pass.w, params.counts.w), i));
-  ShadeResult r = shadePath(WP_BUFFERS_ARG params, ray, WP_LOAD(hits, i).hit);
+  PathRay ray = WP_LOAD(rays, queueEntry(rayQueue(pc.bounce, params.maxPaths), i));
+  ShadeResult r = shadePath(WP_BUFFERS_ARG params, ray, WP_LOAD(hits, i));
   if (r.radiance.x != 0.0f || r.radiance.y != 0.0f || r.radiance.z != 0.0f) {
-    addPathRadiance(WP_BUFFERS_ARG pathSlot(ray.origin), r.radiance);
+    addPathRadiance(WP_BUFFERS_ARG rayPathSlot(ray), r.radiance);
   }
   return r;
 }
 
 // The queue shade of bounce `pc` appends the paths' continuations to: the next bounce's.
 WP_FN WorkQueue continuationQueue(RenderParams params, PassConstants pc) {
-  return rayQueue(pc.pass.w + 1u, params.counts.w);
+  return rayQueue(pc.bounce + 1u, params.maxPaths);
 }
 
 // Advance, one work item: the queue sizes of `pc`'s bounce turned into the next stages'
@@ -119,20 +110,20 @@ WP_FN WorkQueue continuationQueue(RenderParams params, PassConstants pc) {
 WP_FN void advanceStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
   // The dispatch is one workgroup; a single work item must do the read-modify-writes.
   if (i == 0u) {
-    advanceQueues(WP_BUFFERS_ARG pc.pass.w, params.counts.w);
+    advanceQueues(WP_BUFFERS_ARG pc.bounce, params.maxPaths);
   }
 }
 
 // Connect, work item `i`: the shadow ray at entry i of the bounce's shadow queue adds its
 // light sample to its path unless something blocks it.
 WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
-  WorkQueue queue = shadowQueue(pc.pass.w);
+  WorkQueue queue = shadowQueue(pc.bounce);
   if (i >= queueSize(WP_BUFFERS_ARG queue)) {
     return;
   }
   ShadowRay s = WP_LOAD(shadowRays, queueEntry(queue, i));
   if (shadowRayUnoccluded(WP_BUFFERS_ARG params, s)) {
-    addPathRadiance(WP_BUFFERS_ARG pathSlot(s.origin), xyz(s.contribution));
+    addPathRadiance(WP_BUFFERS_ARG shadowRayPathSlot(s), shadowRayContribution(s));
   }
 }
 
@@ -140,12 +131,12 @@ WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
 // and its square to the pixel's running sums (the squares give the per-pixel variance). It
 // walks the pixel's slots in sample order, so there are no races and the sum order is fixed.
 WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
-  uint pixels = params.image.z;
-  uint pathCount = pc.pass.z;
+  uint pixels = params.pixelCount;
+  uint pathCount = pc.pathCount;
   if (t >= min(pathCount, pixels)) {
     return;
   }
-  uint pixel = (pc.pass.x + t) % pixels;
+  uint pixel = (pc.firstPixel + t) % pixels;
   vec4 sum = WP_LOAD(accumulation, pixel);
   vec4 sumSquares = WP_LOAD(accumulation, pixels + pixel);
   for (uint slot = t; slot < pathCount; slot += pixels) {

@@ -30,8 +30,8 @@ WP_FN float srgbToLinear(float c) {
 
 // Texel (x, y), already wrapped, as linear RGBA in [0, 1].
 WP_FN vec4 texelAt(WP_BUFFERS GpuTexture t, int x, int y) {
-  vec4 c = unpackUnorm8(WP_LOAD(texels, t.info.x + toUint(y) * t.info.y + toUint(x)));
-  if ((t.info.w & WP_TEXTURE_SRGB) != 0u) {
+  vec4 c = unpackUnorm8(WP_LOAD(texels, textureFirstTexel(t) + toUint(y) * textureWidth(t) + toUint(x)));
+  if (textureIsSrgb(t)) {
     c = make_vec4(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w);
   }
   return c;
@@ -41,13 +41,13 @@ WP_FN vec4 texelAt(WP_BUFFERS GpuTexture t, int x, int y) {
 // blends in linear space (after the sRGB decode), as GPUs do with sRGB formats.
 WP_FN vec4 sampleTexture(WP_BUFFERS uint index, vec2 uv) {
   GpuTexture t = WP_LOAD(textures, index);
-  int width = toInt(t.info.y);
-  int height = toInt(t.info.z);
-  uint wrapS = t.info.w & 3u;
-  uint wrapT = (t.info.w >> 2u) & 3u;
+  int width = toInt(textureWidth(t));
+  int height = toInt(textureHeight(t));
+  uint wrapS = textureWrapS(t);
+  uint wrapT = textureWrapT(t);
   float x = uv.x * toFloat(width);
   float y = uv.y * toFloat(height);
-  if ((t.info.w & WP_TEXTURE_NEAREST) != 0u) {
+  if (textureIsNearest(t)) {
     return texelAt(WP_BUFFERS_ARG t, wrapTexel(toInt(floor(x)), width, wrapS),
                    wrapTexel(toInt(floor(y)), height, wrapT));
   }

@@ -36,12 +36,10 @@ WP_STRUCT(ChildHits)
 WP_STRUCT_END(ChildHits)
 
 WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
-  vec2 l = intersectAabb(make_vec3(node.leftMin.x, node.leftMin.y, node.leftMin.z),
-                         make_vec3(node.leftMax.x, node.leftMax.y, node.leftMax.z), origin, invDir, tMax);
-  vec2 r = intersectAabb(make_vec3(node.rightMin.x, node.rightMin.y, node.rightMin.z),
-                         make_vec3(node.rightMax.x, node.rightMax.y, node.rightMax.z), origin, invDir, tMax);
-  uint leftIndex = asUint(node.leftMin.w);
-  uint rightIndex = asUint(node.rightMin.w);
+  vec2 l = intersectAabb(nodeLeftMin(node), nodeLeftMax(node), origin, invDir, tMax);
+  vec2 r = intersectAabb(nodeRightMin(node), nodeRightMax(node), origin, invDir, tMax);
+  uint leftIndex = nodeLeftIndex(node);
+  uint rightIndex = nodeRightIndex(node);
   // Empty children are recognised by their index: the slab test would see their inverted
   // boxes as huge ones.
   bool hitLeft = l.x <= l.y && leftIndex != WP_INVALID;
@@ -49,8 +47,8 @@ WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float 
   bool rightFirst = hitRight && (!hitLeft || r.x < l.x);
   ChildHits c;
   c.children = rightFirst
-      ? make_uvec4(rightIndex, leftIndex, asUint(node.rightMax.w), asUint(node.leftMax.w))
-      : make_uvec4(leftIndex, rightIndex, asUint(node.leftMax.w), asUint(node.rightMax.w));
+      ? make_uvec4(rightIndex, leftIndex, nodeRightCount(node), nodeLeftCount(node))
+      : make_uvec4(leftIndex, rightIndex, nodeLeftCount(node), nodeRightCount(node));
   c.count = (hitLeft ? 1u : 0u) + (hitRight ? 1u : 0u);
   return c;
 }
@@ -64,8 +62,8 @@ WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
 // the first.
 WP_FN Hit intersectPlanes(WP_BUFFERS uint planeCount, vec3 origin, vec3 direction, Hit hit, bool anyHit) {
   for (uint i = 0u; i < planeCount; ++i) {
-    vec4 plane = WP_LOAD(planes, i).normalDistance;
-    float t = intersectPlane(make_vec3(plane.x, plane.y, plane.z), plane.w, origin, direction, hit.t);
+    GpuPlane plane = WP_LOAD(planes, i);
+    float t = intersectPlane(planeNormal(plane), planeDistance(plane), origin, direction, hit.t);
     if (t < hit.t) {
       hit.t = t;
       hit.instance = i | WP_HIT_PLANE;
@@ -86,9 +84,7 @@ WP_FN Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit
   for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
     uint j = first + (k < count ? k : 0u);
     GpuTriangle tri = WP_LOAD(triangles, j);
-    float t = intersectTriangle(o, d, make_vec3(tri.v0.x, tri.v0.y, tri.v0.z),
-                                make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z),
-                                make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z), hit.t);
+    float t = intersectTriangle(o, d, triangleVertex0(tri), triangleEdge1(tri), triangleEdge2(tri), hit.t);
     if (k < count && t < hit.t) {
       hit.t = t;
       hit.instance = instance;
@@ -174,7 +170,7 @@ WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, floa
   GpuInstance inst = instanceAt(WP_BUFFERS_ARG i, time);
   vec3 o = pointToObject(inst, origin);
   vec3 d = directionToObject(inst, direction);
-  if (inst.info.x == WP_INSTANCE_SPHERE) {
+  if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
     float t = intersectUnitSphere(o, d, hit.t);
     if (t < hit.t) {
       hit.t = t;
@@ -183,7 +179,7 @@ WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, floa
     }
     return hit;
   }
-  return traceBottomLevel(WP_BUFFERS_ARG inst.info.y, i, o, d, hit, anyHit);
+  return traceBottomLevel(WP_BUFFERS_ARG instanceBvhRoot(inst), i, o, d, hit, anyHit);
 }
 
 // Nearest hit at 0 < t < tMax, or with anyHit the first one found, with moving instances

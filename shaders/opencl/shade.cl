@@ -24,10 +24,10 @@ WP_KERNEL void shade(WP_KERNEL_ARGS) {
   RenderParams params = *paramsBuffer;
   DeviceBuffers buffers = WP_KERNEL_BUFFERS;
   WorkQueue continuations = continuationQueue(params, pc);
-  WorkQueue shadowRayQueue = shadowQueue(pc.pass.w);
+  WorkQueue shadowRayQueue = shadowQueue(pc.bounce);
   ShadeResult r;
   r.flags = 0u;
-  if (i < queueSize(buffers, rayQueue(pc.pass.w, params.counts.w))) {
+  if (i < queueSize(buffers, rayQueue(pc.bounce, params.maxPaths))) {
     r = shadeStage(buffers, params, pc, i);
   }
   bool extends = (r.flags & WP_SHADE_EXTEND) != 0u;

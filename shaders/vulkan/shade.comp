@@ -21,7 +21,7 @@ uint appendToQueue(WorkQueue queue, bool wants) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= queueSize(rayQueue(pc.pass.w, params.counts.w))) {
+  if (i >= queueSize(rayQueue(pc.bounce, params.maxPaths))) {
     return;
   }
   ShadeResult r = shadeStage(params, pc, i);
@@ -31,7 +31,7 @@ void main() {
     rays[j] = r.next;
   }
   bool shadows = (r.flags & WP_SHADE_SHADOW) != 0u;
-  uint k = appendToQueue(shadowQueue(pc.pass.w), shadows);
+  uint k = appendToQueue(shadowQueue(pc.bounce), shadows);
   if (shadows) {
     shadowRays[k] = r.shadow;
   }

@@ -225,7 +225,7 @@ void setSkyProbability(const Scene& scene, double trianglePower, GpuScene& out) 
   double skyPower =
       scene.sky.width > 0 ? environmentPower(scene.sky, scene.skyIntensity, radius > 0.0 ? radius : 1.0) : 0.0;
   double total = skyPower + std::numbers::pi * trianglePower;
-  out.sky.transform.z = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
+  out.sky.selectionProbability = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
 }
 
 }  // namespace

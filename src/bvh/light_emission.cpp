@@ -13,7 +13,7 @@ glm::vec3 meanEmission(const std::vector<gpu::GpuTexture>& textures, const std::
   if (texture == WP_INVALID || !gpu::hasUv(shading)) {
     return factor;
   }
-  const glm::vec2 texelsPerUnit(textures[texture].info.y, textures[texture].info.z);
+  const glm::vec2 texelsPerUnit(gpu::textureWidth(textures[texture]), gpu::textureHeight(textures[texture]));
   const glm::vec2 uv[3] = {gpu::uvAt(shading, {0.0f, 0.0f}), gpu::uvAt(shading, {1.0f, 0.0f}),
                            gpu::uvAt(shading, {0.0f, 1.0f})};
   float extent = 0.0f;

@@ -110,8 +110,8 @@ public:
   virtual void loadScene(const GpuScene& scene) = 0;
   // Whether the kernels of the loaded scene are the motion-blur ones.
   virtual bool motionKernels() const = 0;
-  // Sets the render parameters and sizes path state for params.counts.w paths and the
-  // accumulation for params.image.z pixels; clears the accumulation.
+  // Sets the render parameters and sizes path state for params.maxPaths paths and the
+  // accumulation for params.pixelCount pixels; clears the accumulation.
   virtual void configure(const gpu::RenderParams& params) = 0;
   // Starts recording a sample pass; dispatches run in order, each after the previous one.
   virtual void beginPass(const PassShape& shape) = 0;

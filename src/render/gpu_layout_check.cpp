@@ -27,7 +27,11 @@ static_assert(offsetof(QueueCounters, extendDispatch) == WP_COUNTER_EXTEND_DISPA
 static_assert(offsetof(QueueCounters, connectDispatch) == WP_COUNTER_CONNECT_DISPATCH * 4);
 static_assert(offsetof(QueueCounters, totals) == WP_COUNTER_TOTAL_RAYS * 4);
 static_assert(sizeof(PassConstants) == 16);
-static_assert(offsetof(RenderParams, image) == 112);
+static_assert(offsetof(RenderParams, width) == 112);
+static_assert(offsetof(RenderParams, maxBounces) == 128);
+static_assert(offsetof(RenderParams, planeCount) == 144);
+static_assert(offsetof(RenderParams, bsdfFlags) == 160);
+static_assert(offsetof(GpuEnvironment, width) == 16);
 
 // The binding table: each row's stride is its element's size in 16-byte texels (what the
 // GLSL loaders step by), rows come in binding order with no gaps, and the OpenCL rows come

@@ -18,23 +18,28 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.camera = makeLens(scene.camera, settings.width, settings.height);
   p.sky = gpuScene.sky;
   if (!settings.skySampling) {
-    p.sky.transform.z = 0.0f;  // the sky is then found by BSDF sampling alone
+    p.sky.selectionProbability = 0.0f;  // the sky is then found by BSDF sampling alone
   }
-  uint32_t pixels = settings.width * settings.height;
-  p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);
-  uint32_t mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
-                  : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
-                                                             : WP_MODE_BSDF;
-  p.mode = glm::uvec4(settings.maxBounces, mode, settings.russianRouletteStart, uint32_t(gpuScene.lights.size()));
-  uint64_t totalPaths = uint64_t(pixels) * settings.samplesPerPixel;
-  uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
-  p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, gpuScene.placedInstances,
-                        maxPaths);
-  uint32_t bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
-                       (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
-  uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
-                                                                                  : WP_LIGHT_SELECTION_POWER;
-  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection, 0u);
+  p.width = settings.width;
+  p.height = settings.height;
+  p.pixelCount = settings.width * settings.height;
+  p.seed = settings.seed;
+  p.maxBounces = settings.maxBounces;
+  p.mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
+           : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
+                                                      : WP_MODE_BSDF;
+  p.rouletteStart = settings.russianRouletteStart;
+  p.lightCount = uint32_t(gpuScene.lights.size());
+  p.planeCount = uint32_t(gpuScene.planes.size());
+  p.tlasRoot = gpuScene.tlasRoot;
+  p.instanceCount = gpuScene.placedInstances;
+  uint64_t totalPaths = uint64_t(p.pixelCount) * settings.samplesPerPixel;
+  p.maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
+  p.bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
+                (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
+  p.contributionClamp = settings.contributionClamp;
+  p.lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
+                                                                            : WP_LIGHT_SELECTION_POWER;
   return p;
 }
 
@@ -62,11 +67,7 @@ void WavefrontRenderer::restart(const Scene& scene, const GpuScene& gpuScene, co
 }
 
 void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats) {
-  auto constants = [&](uint32_t bounce) {
-    gpu::PassConstants c;
-    c.pass = glm::uvec4(firstPixel, firstSample, pathCount, bounce);
-    return c;
-  };
+  auto constants = [&](uint32_t bounce) { return gpu::PassConstants{firstPixel, firstSample, pathCount, bounce}; };
   // Vertices of bounce 0 .. maxBounces scatter; the rays they spawn reach bounce
   // maxBounces + 1, where only emission is gathered.
   const uint32_t bounces = settings_.maxBounces + 2;
@@ -80,7 +81,7 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
     backend_.dispatch({Kernel::Advance, constants(bounce), DispatchSize::fixed(1), DispatchArguments::Written});
     backend_.dispatch({Kernel::Connect, constants(bounce), DispatchSize::shadowQueue()});
   }
-  uint32_t pixels = params_.image.z;
+  uint32_t pixels = params_.pixelCount;
   backend_.dispatch({Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels))});
   PassResult result = backend_.endPass();
   stats.extensionRays += result.extensionRays;
@@ -92,8 +93,8 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
 }
 
 void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
-  const uint64_t pixels = params_.image.z;
-  uint32_t count = uint32_t(std::min<uint64_t>({params_.counts.w, maxCount, end - pathsDone_}));
+  const uint64_t pixels = params_.pixelCount;
+  uint32_t count = uint32_t(std::min<uint64_t>({params_.maxPaths, maxCount, end - pathsDone_}));
   runPass(uint32_t(pathsDone_ % pixels), uint32_t(pathsDone_ / pixels), count, stats);
   pathsDone_ += count;
   stats.samples += count;
@@ -102,10 +103,10 @@ void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats
 RenderStats WavefrontRenderer::render(const std::function<void(double)>& progress) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t total = uint64_t(params_.image.z) * settings_.samplesPerPixel;
+  const uint64_t total = uint64_t(params_.pixelCount) * settings_.samplesPerPixel;
   const uint64_t end = pathsDone_ + total;
   while (pathsDone_ < end) {
-    runNextPass(end, params_.counts.w, stats);
+    runNextPass(end, params_.maxPaths, stats);
     if (progress) {
       progress(double(stats.samples) / double(total));
     }
@@ -117,7 +118,7 @@ RenderStats WavefrontRenderer::render(const std::function<void(double)>& progres
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
+  const uint64_t end = uint64_t(params_.pixelCount) * samplesPerPixel;
   // Passes fill what is left of the budget at the measured rate, but never fall under
   // kSmallestPass paths, and the frame ends rather than run a pass under a quarter of the
   // budget: a small pass pays the fixed cost per pass (four dispatches per bounce) on few
@@ -143,7 +144,7 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   return stats;
 }
 
-uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.image.z); }
+uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.pixelCount); }
 
 RadianceImage WavefrontRenderer::image() {
   Accumulation acc = backend_.readAccumulation();

@@ -126,8 +126,8 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
   if (sceneBuffers_[0].handle() == nullptr) {
     throw Error("internal: OpenClBackend::configure called before loadScene");
   }
-  uint64_t maxPaths = params.counts.w;
-  uint64_t pixels = params.image.z;
+  uint64_t maxPaths = params.maxPaths;
+  uint64_t pixels = params.pixelCount;
   uint64_t rayBytes = 2 * maxPaths * sizeof(gpu::PathRay);
   uint64_t accumulationBytes = 2 * pixels * sizeof(glm::vec4);
   uint64_t total = sceneBytes_ + sizeof(params) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters) +
@@ -144,7 +144,7 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
     pathRadiance_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(glm::vec4));
     counters_ = OpenClBuffer(context, CL_MEM_READ_WRITE, sizeof(gpu::QueueCounters));
   }
-  pixelCount_ = params.image.z;
+  pixelCount_ = params.pixelCount;
   accumulation_ = OpenClBuffer(context, CL_MEM_READ_WRITE, accumulationBytes);
   const float zero = 0.0f;
   CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,

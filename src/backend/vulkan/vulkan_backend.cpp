@@ -218,7 +218,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   if (sceneBuffers_[0].handle() == VK_NULL_HANDLE) {
     throw Error("internal: VulkanBackend::configure called before loadScene");
   }
-  uint32_t maxPaths = params.counts.w;
+  uint32_t maxPaths = params.maxPaths;
   if (maxPaths > maxPathsInFlight()) {
     throw Error("internal: " + std::to_string(maxPaths) + " paths in flight exceed the device's " +
                 std::to_string(maxPathsInFlight()));
@@ -237,7 +237,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
     counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
   }
-  pixelCount_ = params.image.z;
+  pixelCount_ = params.pixelCount;
   accumulation_ = VulkanBuffer(*context_, 2ull * pixelCount_ * sizeof(glm::vec4),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   context_->runOnce([&](VkCommandBuffer cmd) {
@@ -386,8 +386,8 @@ PassResult VulkanBackend::endPass() {
   gpu::QueueCounters counters;
   std::memcpy(&counters, countersReadback_.mapped(), sizeof(counters));
   PassResult result;
-  result.extensionRays = counters.totals.x;
-  result.shadowRays = counters.totals.y;
+  result.extensionRays = gpu::tracedRays(counters);
+  result.shadowRays = gpu::tracedShadowRays(counters);
   if (queryPool_ != VK_NULL_HANDLE && queryKernels_.size() > 1) {
     std::vector<uint64_t> ticks(queryKernels_.size());
     VK_CHECK(vkGetQueryPoolResults(context_->device, queryPool_, 0, static_cast<uint32_t>(ticks.size()),
