@@ -62,6 +62,8 @@ WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
                    shadowRayLength(s), shadowRayTime(s));
 }
 
+// Adds to the radiance of the path in `slot` (its rgb only: on lavapipe every component
+// written is a scalar store per lane).
 WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_BUFFER(pathRadiance)[slot], radiance); }
 
 // Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue,
@@ -100,7 +102,7 @@ WP_FN ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, u
   return r;
 }
 
-// The queue shade of bounce `pc` appends the paths' continuations to: the next bounce's.
+// The queue that shade of pc.bounce appends the paths' continuations to: the next bounce's.
 WP_FN WorkQueue continuationQueue(RenderParams params, PassConstants pc) {
   return rayQueue(pc.bounce + 1u, params.maxPaths);
 }
