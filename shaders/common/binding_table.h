@@ -80,12 +80,16 @@ WP_STRUCT(DeviceBuffers)
   WP_BINDINGS(WP_DEVICE_BUFFER_MEMBER)
 WP_STRUCT_END(DeviceBuffers)
 
-#define WP_LOAD(name, i) buffers.name[i]
-#define WP_BUFFER(name) buffers.name
 #if defined(__cplusplus)
 #define WP_BUFFERS const DeviceBuffers &buffers,
+#define WP_LOAD(name, i) buffers.name[i]
+#define WP_BUFFER(name) buffers.name
 #else
-#define WP_BUFFERS DeviceBuffers buffers,
+// OpenCL: a pointer to the kernel's bundle, so that a call the compiler does not inline
+// passes one pointer rather than a copy of every buffer's.
+#define WP_BUFFERS const DeviceBuffers *buffers,
+#define WP_LOAD(name, i) buffers->name[i]
+#define WP_BUFFER(name) buffers->name
 #endif
 #define WP_BUFFERS_ARG buffers,
 #else

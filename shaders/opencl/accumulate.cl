@@ -5,5 +5,5 @@
 
 WP_KERNEL void accumulate(WP_KERNEL_ARGS) {
   DeviceBuffers buffers = WP_KERNEL_BUFFERS;
-  accumulateStage(buffers, *paramsBuffer, pc, get_global_id(0));
+  accumulateStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

@@ -7,5 +7,5 @@
 
 WP_KERNEL void advance(WP_KERNEL_ARGS) {
   DeviceBuffers buffers = WP_KERNEL_BUFFERS;
-  advanceStage(buffers, *paramsBuffer, pc, get_global_id(0));
+  advanceStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

@@ -4,5 +4,5 @@
 
 WP_KERNEL void connect(WP_KERNEL_ARGS) {
   DeviceBuffers buffers = WP_KERNEL_BUFFERS;
-  connectStage(buffers, *paramsBuffer, pc, get_global_id(0));
+  connectStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

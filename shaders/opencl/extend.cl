@@ -4,5 +4,5 @@
 
 WP_KERNEL void extend(WP_KERNEL_ARGS) {
   DeviceBuffers buffers = WP_KERNEL_BUFFERS;
-  extendStage(buffers, *paramsBuffer, pc, get_global_id(0));
+  extendStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

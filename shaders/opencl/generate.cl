@@ -4,5 +4,5 @@
 
 WP_KERNEL void generate(WP_KERNEL_ARGS) {
   DeviceBuffers buffers = WP_KERNEL_BUFFERS;
-  generateStage(buffers, *paramsBuffer, pc, get_global_id(0));
+  generateStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

@@ -27,8 +27,8 @@ WP_KERNEL void shade(WP_KERNEL_ARGS) {
   WorkQueue shadowRayQueue = shadowQueue(pc.bounce);
   ShadeResult r;
   r.flags = 0u;
-  if (i < queueSize(buffers, rayQueue(pc.bounce, params.maxPaths))) {
-    r = shadeStage(buffers, params, pc, i);
+  if (i < queueSize(&buffers, rayQueue(pc.bounce, params.maxPaths))) {
+    r = shadeStage(&buffers, params, pc, i);
   }
   bool extends = (r.flags & WP_SHADE_EXTEND) != 0u;
   bool shadows = (r.flags & WP_SHADE_SHADOW) != 0u;
@@ -36,8 +36,8 @@ WP_KERNEL void shade(WP_KERNEL_ARGS) {
   uint k = shadows ? atomic_inc(&shadowCount) : 0u;
   barrier(CLK_LOCAL_MEM_FENCE);
   if (lid == 0u) {
-    rayBase = reserveQueueEntries(buffers, continuations, rayCount);
-    shadowBase = reserveQueueEntries(buffers, shadowRayQueue, shadowCount);
+    rayBase = reserveQueueEntries(&buffers, continuations, rayCount);
+    shadowBase = reserveQueueEntries(&buffers, shadowRayQueue, shadowCount);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (extends) {
