@@ -42,5 +42,7 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_ATOMIC_ADD(element, n) std::atomic_ref<uint>(element).fetch_add(n)
 // Adds a vec3 to the xyz of a vec4.
 #define WP_ADD_XYZ(element, v) (element) += vec4((v), 0.0f)
+// The xyz of a vec4.
+#define WP_XYZ(v) vec3(v)
 
 #endif
