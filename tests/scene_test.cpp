@@ -384,11 +384,14 @@ TEST_F(SceneTest, ConvertsMetallicRoughnessIorTransmissionVolumeAndLambert) {
                   "extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_transmission":{"transmissionFactor":0.9},
                                 "KHR_materials_volume":{"attenuationColor":[0.5,0.75,1],"attenuationDistance":2}}},
                  {"name":"clay","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.5,0.5,1],"metallicFactor":2},
-                  "extras":{"wavepath":{"bsdf":"lambert"}}}],
+                  "extras":{"wavepath":{"bsdf":"lambert"}}},
+                 {"name":"seed","extras":{"wavepath":{"diffuse":"disney"}}},
+                 {"name":"plain","extras":{"wavepath":{"diffuse":"lambert"}}}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1},
-                             {"attributes":{"POSITION":0},"material":2}]}],
+                             {"attributes":{"POSITION":0},"material":2},{"attributes":{"POSITION":0},"material":3},
+                             {"attributes":{"POSITION":0},"material":4}]}],
     "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
-  ASSERT_EQ(scene.materials.size(), 3u);
+  ASSERT_EQ(scene.materials.size(), 5u);
   const wp::Material& fallback = scene.materials[0];  // glTF's defaults: a rough metal
   EXPECT_EQ(fallback.bsdf, wp::Material::Bsdf::Gltf);
   EXPECT_FLOAT_EQ(fallback.metallic, 1.0f);
@@ -426,9 +429,12 @@ TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
   EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_volume":{"attenuationColor":[1,2,1]}}})")
                 .find("KHR_materials_volume.attenuationColor must be 3 numbers in [0, 1]"),
             std::string::npos);
-  EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"bsdf":"phong"}}})")
-                .find(R"(a material's extras.wavepath must be {"bsdf": "lambert"})"),
+  const std::string extrasError = R"(a material's extras.wavepath must be {"bsdf": "lambert"} or {"diffuse": )";
+  EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"bsdf":"phong"}}})").find(extrasError), std::string::npos);
+  EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"diffuse":"oren-nayar"}}})").find(extrasError), std::string::npos);
+  EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"bsdf":"lambert","diffuse":"disney"}}})").find(extrasError),
             std::string::npos);
+  EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"difuse":"disney"}}})").find(extrasError), std::string::npos);
 }
 
 // --- vertex normals ---

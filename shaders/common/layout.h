@@ -37,7 +37,11 @@ WP_BEGIN
 #define WP_BINDING_RAYS_READ 19     // the rays buffer again, as texels (Vulkan only)
 #define WP_BINDING_HITS_READ 20     // the hits buffer again, as texels (Vulkan only)
 #define WP_BINDING_SHADOW_RAYS_READ 21  // the shadow-ray buffer again, as texels (Vulkan only)
-#define WP_BINDING_COUNT 22u
+// float[] (texels): the BSDF's constant tables (energy_compensation.h), uploaded from the
+// header's own array. Vulkan only: OpenCL and C++ read that array as a constant, but
+// llvmpipe takes minutes to compile a shader that holds it.
+#define WP_BINDING_BSDF_TABLES 22
+#define WP_BINDING_COUNT 23u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
@@ -142,6 +146,8 @@ WP_STRUCT_END(GpuPlane)
 // GpuMaterial.info.x: which BSDF the material has.
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
+#define WP_MATERIAL_GLTF_DISNEY_DIFFUSE 2u  // the mixture with the seed's Disney diffuse base
+                                            // (extras.wavepath.diffuse = "disney")
 
 // A surface material, 112 bytes.
 WP_STRUCT(GpuMaterial)

@@ -101,6 +101,15 @@ Triangle triangleOf(const Mesh& mesh, size_t t) {
 
 uint32_t textureIndex(int index) { return index < 0 ? WP_INVALID : uint32_t(index); }
 
+uint32_t gpuMaterialKind(Material::Bsdf bsdf) {
+  switch (bsdf) {
+    case Material::Bsdf::Lambert: return WP_MATERIAL_LAMBERT;
+    case Material::Bsdf::GltfDisneyDiffuse: return WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
+    case Material::Bsdf::Gltf: break;
+  }
+  return WP_MATERIAL_GLTF;
+}
+
 void packTextures(const Scene& scene, GpuScene& out) {
   for (const Texture& texture : scene.textures) {
     const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
@@ -441,7 +450,7 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
         {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),
          glm::vec4(material.metallic, material.roughness, material.ior, material.transmission),
          glm::vec4(material.attenuationColor, material.attenuationDistance),
-         glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF,
+         glm::uvec4(gpuMaterialKind(material.bsdf),
                     textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
                     textureIndex(material.normalTexture)),
          glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f),

@@ -18,10 +18,14 @@ struct SceneAnimation;
 
 // A glTF metallic-roughness material (defaults as in glTF), or an ideal diffuse one.
 struct Material {
-  enum class Bsdf { Gltf, Lambert };
+  // Gltf: glTF's metallic-roughness BRDF (a Lambertian base under the dielectric's specular
+  // layer); GltfDisneyDiffuse: the same with the seed report's Disney diffuse base
+  // (extras.wavepath.diffuse = "disney"); Lambert: ideal diffuse of albedo baseColor
+  // (extras.wavepath.bsdf = "lambert").
+  enum class Bsdf { Gltf, GltfDisneyDiffuse, Lambert };
 
   std::string name;
-  Bsdf bsdf = Bsdf::Gltf;     // Lambert: extras.wavepath.bsdf = "lambert", albedo baseColor
+  Bsdf bsdf = Bsdf::Gltf;
   glm::vec3 baseColor{1.0f};  // linear RGB base colour
   float alpha = 1.0f;
   float metallic = 1.0f;

@@ -8,6 +8,7 @@
 #include "backend/vulkan/vk_check.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
+#include "shaders/common/ggx_albedo_table.h"
 #include "spirv/accumulate_spv.h"
 #include "spirv/advance_spv.h"
 #include "spirv/connect_motion_spv.h"
@@ -66,7 +67,8 @@ VkDescriptorType descriptorType(uint32_t binding) {
     case WP_BINDING_TEXELS:
     case WP_BINDING_RAYS_READ:
     case WP_BINDING_HITS_READ:
-    case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    case WP_BINDING_SHADOW_RAYS_READ:
+    case WP_BINDING_BSDF_TABLES: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     default: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   }
 }
@@ -114,6 +116,8 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
     VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
   }
   countersReadback_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  bsdfTables_ = VulkanBuffer(*context_, sizeof(gpu::kGgxAlbedo), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
+  bsdfTables_.upload(gpu::kGgxAlbedo, sizeof(gpu::kGgxAlbedo));
 }
 
 VulkanBackend::~VulkanBackend() {
@@ -134,6 +138,7 @@ VulkanBackend::~VulkanBackend() {
   vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
   // Buffers are members and release themselves before context_ is destroyed.
   sceneBuffers_ = {};
+  bsdfTables_ = {};
   params_ = {};
   rays_ = {};
   hits_ = {};
@@ -266,6 +271,7 @@ void VulkanBackend::writeDescriptors() {
   buffers[WP_BINDING_PATH_RADIANCE] = &pathRadiance_;
   buffers[WP_BINDING_COUNTERS] = &counters_;
   buffers[WP_BINDING_ACCUM] = &accumulation_;
+  buffers[WP_BINDING_BSDF_TABLES] = &bsdfTables_;
   for (size_t i = 0; i < kSceneBindings.size(); ++i) {
     buffers[kSceneBindings[i]] = &sceneBuffers_[i];
   }
@@ -285,7 +291,7 @@ void VulkanBackend::writeDescriptors() {
     writes[i].descriptorType = type;
     if (type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
       // The sky's distributions are arrays of single floats; everything else is vec4s.
-      bool scalars = i == WP_BINDING_ENV_MARGINAL || i == WP_BINDING_ENV_CONDITIONAL;
+      bool scalars = i == WP_BINDING_ENV_MARGINAL || i == WP_BINDING_ENV_CONDITIONAL || i == WP_BINDING_BSDF_TABLES;
       views[i] = texelView(*buffers[i], scalars ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_UINT);
       writes[i].pTexelBufferView = &views[i];
     } else {
