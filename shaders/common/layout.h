@@ -163,19 +163,35 @@ WP_STRUCT(GpuMaterial)
                       // yzw: unused
 WP_STRUCT_END(GpuMaterial)
 
-// Emissive triangle in world space, with its alias-table entry for power-proportional
-// selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else
-// take alias), 80 bytes.
+// GpuLight.info.y: what the light is, in the low bits, and its flags above them.
+#define WP_LIGHT_TRIANGLE 0u     // an emissive triangle (an area light)
+#define WP_LIGHT_POINT 1u        // KHR_lights_punctual: a point
+#define WP_LIGHT_SPOT 2u         // a point emitting into a cone
+#define WP_LIGHT_DIRECTIONAL 3u  // a distant light (a sun) from one direction
+#define WP_LIGHT_KIND_MASK 3u
+#define WP_LIGHT_DOUBLE_SIDED 4u  // a triangle that emits on both sides (else the front only,
+                                  // the side of cross(edge1, edge2))
+
+// One light of next event estimation, with its alias-table entry for power-proportional
+// selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else take
+// alias): an emissive triangle in world space, or a glTF punctual light, whose position and
+// direction may move while the shutter is open. Read it through the accessors of lights.h.
+// 96 bytes.
 WP_STRUCT(GpuLight)
-  vec4 v0;        // xyz: vertex 0, w: area
-  vec4 edge1;     // xyz: v1 - v0, w: probability of selecting this light
-  vec4 edge2;     // xyz: v2 - v0, w: alias threshold in [0, 1]
-  vec4 emission;  // rgb: radiance (the material's factor), w: luminance of the mean emitted
-                  // radiance over the triangle (texture included), its selection weight
-  uvec4 info;     // x: alias index, y: 1 if it emits on both sides (else the front only,
-                  // the side of cross(edge1, edge2)), z: its GpuTriangleShading (the
-                  // vertices in the same order as v0, edge1, edge2), w: emissive texture
-                  // (WP_INVALID: none)
+  vec4 v0;        // triangle: xyz vertex 0, w area; punctual: xyz position at shutter open,
+                  // w cos of a spot's outer cone angle
+  vec4 edge1;     // triangle: xyz v1 - v0; punctual: xyz the unit direction it points (spot,
+                  // directional) at shutter open; w: probability of selecting this light
+  vec4 edge2;     // triangle: xyz v2 - v0; punctual: xyz position at shutter close;
+                  // w: alias threshold in [0, 1]
+  vec4 emission;  // rgb: radiance (triangle), radiant intensity in W/sr (point, spot) or
+                  // irradiance in W/m^2 (directional); w: luminance of the triangle's mean
+                  // emitted radiance (texture included), or of the intensity or irradiance
+  vec4 motion;    // punctual: xyz the direction at shutter close, w cos of a spot's inner
+                  // cone angle; unused by triangles
+  uvec4 info;     // x: alias index, y: WP_LIGHT_* kind | WP_LIGHT_DOUBLE_SIDED, z: the
+                  // triangle's GpuTriangleShading (its vertices in the order of v0, edge1,
+                  // edge2), w: its emissive texture (WP_INVALID: none)
 WP_STRUCT_END(GpuLight)
 
 // Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
@@ -192,10 +208,10 @@ WP_STRUCT(RenderParams)
   GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
   uvec4 image;          // x: width, y: height, z: pixel count, w: seed
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
-                        // w: number of lights
+                        // w: number of lights (triangles and punctual)
   uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
   uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
-                        // z: WP_LIGHT_SELECTION_*, w: unused
+                        // z: WP_LIGHT_SELECTION_*, w: number of punctual (delta) lights
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

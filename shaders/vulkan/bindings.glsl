@@ -107,11 +107,12 @@ GpuMaterial loadMaterial(uint i) {
 
 GpuLight loadLight(uint i) {
   GpuLight l;
-  l.v0 = WP_FLOATS(lightTexels, i, 5u, 0u);
-  l.edge1 = WP_FLOATS(lightTexels, i, 5u, 1u);
-  l.edge2 = WP_FLOATS(lightTexels, i, 5u, 2u);
-  l.emission = WP_FLOATS(lightTexels, i, 5u, 3u);
-  l.info = WP_UINTS(lightTexels, i, 5u, 4u);
+  l.v0 = WP_FLOATS(lightTexels, i, 6u, 0u);
+  l.edge1 = WP_FLOATS(lightTexels, i, 6u, 1u);
+  l.edge2 = WP_FLOATS(lightTexels, i, 6u, 2u);
+  l.emission = WP_FLOATS(lightTexels, i, 6u, 3u);
+  l.motion = WP_FLOATS(lightTexels, i, 6u, 4u);
+  l.info = WP_UINTS(lightTexels, i, 6u, 5u);
   return l;
 }
 

@@ -1,8 +1,11 @@
 // The wavepath subcommands and their options.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
+
+#include <glm/glm.hpp>
 
 #include "app/camera_options.h"
 #include "app/pose_uploader.h"
@@ -21,7 +24,10 @@ struct RenderOptions {
   std::string output;  // empty: <scene name>.png in the working directory
   RenderSettings settings;
   CameraFlags camera;
-  std::string sky;              // an .hdr or .exr sky replacing the scene's; empty: keep it
+  std::string cameraName;               // --camera N|NAME: the file camera to look through
+  std::optional<size_t> sceneIndex;     // --scene N: the glTF scene to render
+  std::string sky;                      // "none", or an .hdr or .exr sky; empty: the default rule
+  std::optional<glm::vec3> skyColor;    // --sky-color R,G,B: a constant sky
   float skyIntensity = 1.0f;
   float skyRotationDegrees = 0.0f;
   bool widthGiven = false;

@@ -192,7 +192,21 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
   addCameraFlags(*cmd, o.camera);
   cmd->add_option("--time", o.time, "Pose the scene's animations at this time, in seconds (default: the rest pose)")
       ->check(finiteNumber(false));
-  cmd->add_option("--sky", o.sky, "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar");
+  cmd->add_option("--camera", o.cameraName,
+                  "The file camera to look through: its index, or the name of the camera or of its node (default: "
+                  "the first camera of the scene)");
+  cmd->add_option("--scene", o.sceneIndex, "The glTF scene to render, by index (default: the file's default scene)");
+  cmd->add_option("--sky", o.sky,
+                  "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar, or 'none' for no sky "
+                  "(default: a white sky unless the scene has lamps or emitters brighter than it)");
+  cmd->add_option_function<std::vector<float>>(
+         "--sky-color", [&o](const std::vector<float>& rgb) { o.skyColor = glm::vec3(rgb[0], rgb[1], rgb[2]); },
+         "A constant sky of this linear RGB radiance, e.g. 0.05,0.05,0.05")
+      ->delimiter(',')
+      ->expected(3)
+      ->check(finiteNumber(false))
+      ->check(CLI::Range(0.0f, 1e9f))
+      ->excludes("--sky");
   cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
   cmd->add_option("--sky-rotation", o.skyRotationDegrees, "Rotation of the sky about +y, in degrees");
   static const std::map<std::string, bool> onOff = {{"on", true}, {"off", false}};
@@ -211,8 +225,14 @@ bool validationRequested(const RenderOptions& o) {
 }
 
 Scene loadSceneWithSky(RenderOptions& o) {
-  Scene scene = loadScene(o.scene, o.sky.empty());
-  if (!o.sky.empty()) {
+  LoadOptions load;
+  load.defaultSky = o.sky.empty() && !o.skyColor;
+  load.scene = o.sceneIndex;
+  load.camera = o.cameraName;
+  Scene scene = loadScene(o.scene, load);
+  if (o.skyColor) {
+    scene.sky = makeEnvironmentMap(1, 1, {*o.skyColor});
+  } else if (!o.sky.empty() && o.sky != "none") {
     scene.sky = loadEnvironmentMap(o.sky);
   }
   scene.skyIntensity = o.skyIntensity;

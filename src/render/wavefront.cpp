@@ -34,7 +34,8 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
                        (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
   uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
                                                                                   : WP_LIGHT_SELECTION_POWER;
-  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection, 0u);
+  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection,
+                         gpuScene.punctualLightCount);
   return p;
 }
 
