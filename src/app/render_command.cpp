@@ -1,6 +1,7 @@
 // `wavepath render`: loads a glTF scene, renders it headless and writes PNG or EXR.
 #include <sys/resource.h>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,14 +14,15 @@
 #include <CLI/CLI.hpp>
 
 #include "app/backend_factory.h"
+#include "app/interrupt.h"
 #include "app/commands.h"
 #include "app/frame_sequence.h"
 #include "app/pose_uploader.h"
-#include "app/progress_bar.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "image/image_io.h"
+#include "render/render_identity.h"
 #include "render/wavefront.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_animation.h"
@@ -88,29 +90,120 @@ CLI::Validator finiteNumber(bool positive) {
       positive ? "POSITIVE" : "NUMBER");
 }
 
-// Renders one pose of the scene on `backend` and writes it to `output`, with the summary line.
-void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, PoseUploader& uploader,
-                 Scene scene, const std::string& output) {
+// "--samples 16..31 --region 0,0,64,32 " for what a part holds, or "" for a whole render.
+std::string partText(const RenderSettings& s) {
+  std::string text;
+  if (s.firstSample != 0 || s.sampleEnd() != s.samplesPerPixel)
+    text += "samples " + std::to_string(s.firstSample) + ".." + std::to_string(s.sampleEnd() - 1) + " of ";
+  const PixelRegion r = s.pixelRegion();
+  if (!(r == PixelRegion{0, 0, s.width, s.height}))
+    text += "region " + std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) + "," +
+            std::to_string(r.y1) + " of ";
+  return text;
+}
+
+// The EXR header's record of what `image` holds (image/render_record.h).
+RenderRecord renderRecord(const RenderSettings& s, const RenderIdentity& identity, const DisplaySettings& display,
+                          bool autoExposure) {
+  RenderRecord r;
+  r.frameWidth = s.width;
+  r.frameHeight = s.height;
+  r.samplesPerPixel = s.samplesPerPixel;
+  r.firstSample = s.firstSample;
+  r.lastSample = s.sampleEnd() - 1;
+  const PixelRegion region = s.pixelRegion();
+  r.x0 = region.x0;
+  r.y0 = region.y0;
+  r.x1 = region.x1;
+  r.y1 = region.y1;
+  r.seed = s.seed;
+  r.sceneHash = identity.sceneHash;
+  r.settings = identity.settings;
+  r.display = display;
+  r.autoExposure = autoExposure;
+  return r;
+}
+
+// Renders one pose of the scene on `backend` and writes it to `output`, with the summary
+// line. Returns 0, or the exit code of a render a signal interrupted (nothing is written
+// then but its checkpoint).
+int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, PoseUploader& uploader,
+                Scene scene, const std::string& output) {
   auto wallStart = std::chrono::steady_clock::now();
   const GpuScene& gpuScene = uploader.gpuSceneOf(scene);
   applyCameraFlags(o.camera, scene.camera, gpuScene);
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
-  ProgressBar bar;
-  RenderStats stats = renderer.render([&](double fraction) { bar.update(fraction); });
-  bar.finish();
+  Checkpoint here;
+  here.identity = renderIdentity(gpuScene, makeRenderParams(scene, gpuScene, o.settings), o.settings);
+  here.samplesPerPixel = o.settings.samplesPerPixel;
+  here.firstSample = o.settings.firstSample;
+  here.endSample = o.settings.sampleEnd();
+  here.region = o.settings.pixelRegion();
+  here.device = o.backend + ": " + backend.deviceName();
+  RenderOutcome outcome = renderResumably(renderer, here, o.checkpoint);
+  const RenderStats& stats = outcome.stats;
+  if (outcome.interruptedBy != 0) {
+    checkValidation(choice);
+    if (o.checkpoint.path.empty())
+      std::fprintf(stderr, "wavepath: %s: render stopped, nothing written (render with --checkpoint FILE to be able "
+                           "to stop and resume)\n", signalName(outcome.interruptedBy));
+    return o.checkpoint.path.empty() ? exitCodeInterrupted(outcome.interruptedBy) : kExitInterruptedResumable;
+  }
   RadianceImage image = renderer.image();
   checkValidation(choice);
-  writeImage(output, image, displaySettings(o.camera, scene.camera.optics, image));
+  const DisplaySettings display = displaySettings(o.camera, scene.camera.optics, image);
+  image.record = renderRecord(o.settings, here.identity, display, o.camera.autoExposure);
+  writeImage(output, image, display);
+  if (!o.checkpoint.path.empty()) std::filesystem::remove(o.checkpoint.path);
 
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   double rays = double(stats.extensionRays + stats.shadowRays);
-  std::printf("%s: %ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
+  std::printf("%s: %s%ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
               "(%.1f M extension + %.1f M shadow rays) on %s\n",
-              output.c_str(), o.settings.width, o.settings.height, o.settings.samplesPerPixel, stats.seconds, wall,
-              double(stats.samples) / stats.seconds * 1e-6, rays / stats.seconds * 1e-6,
-              double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend.deviceName().c_str());
+              output.c_str(), partText(o.settings).c_str(), o.settings.width, o.settings.height,
+              o.settings.samplesPerPixel, stats.seconds, wall, double(stats.samples) / stats.seconds * 1e-6,
+              rays / stats.seconds * 1e-6, double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6,
+              backend.deviceName().c_str());
   if (o.timings) {
     printTimings(stats, gpuScene, uploader.lastUpdate());
+  }
+  return 0;
+}
+
+// Parses "X0,Y0,X1,Y1" (four whole numbers); throws a one-line wp::Error otherwise.
+PixelRegion parseRegion(const std::string& text) {
+  PixelRegion r;
+  uint32_t* fields[] = {&r.x0, &r.y0, &r.x1, &r.y1};
+  size_t at = 0;
+  for (int i = 0; i < 4; ++i) {
+    const size_t comma = i < 3 ? text.find(',', at) : text.size();
+    const std::string field = comma == std::string::npos ? "" : text.substr(at, comma - at);
+    const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), *fields[i]);
+    if (field.empty() || ec != std::errc() || ptr != field.data() + field.size())
+      throw Error("'" + text + "' is not four whole numbers X0,Y0,X1,Y1; give a crop such as --region 0,0,256,128");
+    at = comma + 1;
+  }
+  return r;
+}
+
+// Puts --samples and --region into the settings, checked against --spp and the image size.
+void applyPartFlags(RenderOptions& o) {
+  RenderSettings& s = o.settings;
+  if (!o.samples.empty()) {
+    const FrameRange range = parseFrameRange(o.samples, "--samples 0..15");
+    if (range.last >= s.samplesPerPixel)
+      throw FlagError("--samples " + o.samples + " goes past the " + std::to_string(s.samplesPerPixel) +
+                      " samples of --spp (numbered 0 to " + std::to_string(s.samplesPerPixel - 1) + ")");
+    s.firstSample = range.first;
+    s.endSample = range.last + 1;
+  }
+  if (!o.region.empty()) {
+    const PixelRegion r = parseRegion(o.region);
+    if (r.x0 >= r.x1 || r.y0 >= r.y1 || r.x1 > s.width || r.y1 > s.height)
+      throw FlagError("--region " + o.region + " is not a crop of the " + std::to_string(s.width) + "x" +
+                      std::to_string(s.height) + " image; give X0 < X1 <= width and Y0 < Y1 <= height (X1, Y1 "
+                      "exclusive)");
+    s.region = r;
   }
 }
 
@@ -136,6 +229,51 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
           "A..B"))
       ->excludes(cmd->get_option("--time"));
   cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(finiteNumber(true));
+  cmd->add_option("--samples", o.samples,
+                  "Render only samples A..B (inclusive, numbered from 0) of --spp: a batch of a frame split over "
+                  "machines, to combine with 'wavepath merge'")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              parseFrameRange(text, "--samples 0..15");
+            } catch (const Error& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "A..B"));
+  cmd->add_option("--region", o.region,
+                  "Render only columns X0..X1-1 and rows Y0..Y1-1 of the image (X1, Y1 exclusive), to combine with "
+                  "'wavepath merge'")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              parseRegion(text);
+            } catch (const Error& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "X0,Y0,X1,Y1"));
+  CLI::Option* checkpoint =
+      cmd->add_option("--checkpoint", o.checkpoint.path,
+                      "Save the render's progress to FILE every --checkpoint-every seconds and when SIGINT or "
+                      "SIGTERM stops it (exit code 75); removed once the image is written")
+          ->excludes(cmd->get_option("--frames"));
+  cmd->add_option("--checkpoint-every", o.checkpoint.everySeconds,
+                  "Seconds of rendering between checkpoints (default 60; 0: after every pass)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            double value = 0.0;
+            if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0.0)
+              return "'" + text + "' is not a number of seconds (0 or more)";
+            return "";
+          },
+          "SECONDS"))
+      ->needs(checkpoint);
+  cmd->add_flag("--resume", o.checkpoint.resume,
+                "Go on from the --checkpoint FILE of an interrupted render (same scene and flags)")
+      ->needs(checkpoint);
   return cmd;
 }
 
@@ -238,8 +376,11 @@ int runRender(RenderOptions o) {
   }
   const FrameRange frames = framesToRender(o);
   checkOutputPath(framePath(o.output, frames.first));
+  checkCheckpointFlags(o.checkpoint);
+  catchInterrupts();
 
   const Scene scene = loadSceneWithSky(o);
+  applyPartFlags(o);
   if (!o.frames.empty() && !scene.animation) {
     note(o.scene + " has no animation: every frame is the same image");
   } else if (!o.frames.empty() && frames.last / o.fps > scene.animation->duration) {
@@ -253,8 +394,9 @@ int runRender(RenderOptions o) {
   const double shutter = shutterSeconds(o, scene);
   for (uint32_t frame = frames.first;; ++frame) {
     const std::optional<double> time = o.frames.empty() ? o.time : std::optional<double>(frame / o.fps);
-    renderFrame(o, choice, *backend, uploader, time ? poseSceneOverShutter(scene, *time, shutter) : scene,
-                framePath(o.output, frame));
+    const int code = renderFrame(o, choice, *backend, uploader,
+                                 time ? poseSceneOverShutter(scene, *time, shutter) : scene, framePath(o.output, frame));
+    if (code != 0) return code;
     if (frame == frames.last) break;  // tested here, as frames.last may be the largest uint32_t
   }
   return 0;
