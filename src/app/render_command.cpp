@@ -207,6 +207,20 @@ void applyPartFlags(RenderOptions& o) {
   }
 }
 
+// A CLI11 check that `parse` accepts the text; its wp::Error's message says why not.
+CLI::Validator parsedBy(void (*parse)(const std::string&), const char* name) {
+  return CLI::Validator(
+      [parse](std::string& text) -> std::string {
+        try {
+          parse(text);
+        } catch (const Error& e) {
+          return e.what();
+        }
+        return "";
+      },
+      name);
+}
+
 }  // namespace
 
 CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
@@ -217,44 +231,17 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--frames", o.frames,
                   "Render frames A..B (inclusive) of the animations, frame n at n/fps seconds, to the -o pattern, "
                   "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            try {
-              parseFrameRange(text);
-            } catch (const Error& e) {
-              return e.what();
-            }
-            return "";
-          },
-          "A..B"))
+      ->check(parsedBy([](const std::string& text) { parseFrameRange(text); }, "A..B"))
       ->excludes(cmd->get_option("--time"));
   cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(finiteNumber(true));
   cmd->add_option("--samples", o.samples,
                   "Render only samples A..B (inclusive, numbered from 0) of --spp: a batch of a frame split over "
                   "machines, to combine with 'wavepath merge'")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            try {
-              parseFrameRange(text, "--samples 0..15");
-            } catch (const Error& e) {
-              return e.what();
-            }
-            return "";
-          },
-          "A..B"));
+      ->check(parsedBy([](const std::string& text) { parseFrameRange(text, "--samples 0..15"); }, "A..B"));
   cmd->add_option("--region", o.region,
                   "Render only columns X0..X1-1 and rows Y0..Y1-1 of the image (X1, Y1 exclusive), to combine with "
                   "'wavepath merge'")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            try {
-              parseRegion(text);
-            } catch (const Error& e) {
-              return e.what();
-            }
-            return "";
-          },
-          "X0,Y0,X1,Y1"));
+      ->check(parsedBy([](const std::string& text) { parseRegion(text); }, "X0,Y0,X1,Y1"));
   CLI::Option* checkpoint =
       cmd->add_option("--checkpoint", o.checkpoint.path,
                       "Save the render's progress to FILE every --checkpoint-every seconds and when SIGINT or "
