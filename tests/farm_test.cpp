@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <thread>
 
 #include "image/image_io.h"
@@ -195,6 +196,23 @@ TEST_P(Farm, RegionsMergeIntoTheWholeRenderBitIdentical) {
   ASSERT_EQ(runWavepath(toPng).exitCode, 0);
   expectBitIdentical(readExr(dir / "merged.exr"), whole);
   EXPECT_EQ(fileBytes(dir / "merged.png"), fileBytes(dir / "whole.png"));
+}
+
+// The progress line as a user at a terminal sees it (script gives wavepath a pseudo-terminal),
+// redrawn as passes end.
+TEST(Progress, ATerminalShowsSamplesDoneRateAndTimeLeft) {
+  const fs::path dir = scratchDirectory("progress");
+  const fs::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  RunResult r = runShell("script -qefc \"'" + wavepathExecutable().string() + "' render '" + scene.string() + "' -o '" +
+                         (dir / "out.exr").string() + "' --width 48 --height 40 --spp 64 --max-paths 512\" /dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.out;
+  const std::regex line(R"(\[[#.]{30}\] (\d+\.\d) of 64 spp \(\d+\.\d%\), \d+\.\d\d M samples/s, \d+:\d\d spent, \d+:\d\d left)");
+  std::vector<double> done;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), line); it != std::sregex_iterator(); ++it)
+    done.push_back(std::stod((*it)[1]));
+  ASSERT_GE(done.size(), 2u) << "expected the line redrawn in: " << r.out;
+  EXPECT_TRUE(std::is_sorted(done.begin(), done.end()));
+  EXPECT_GT(done.back(), done.front());
 }
 
 const auto kBackends = ::testing::Values(std::string("vulkan"), std::string("opencl"));

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <thread>
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -103,6 +104,20 @@ RunResult waitWavepath(WavepathProcess& process, int timeoutSeconds) {
   result.err += slurp(process.dir / "err");
   return result;
 }
+
+RunResult runShell(const std::string& command) {
+  RunResult result;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) result.out.append(buffer, n);
+  const int status = ::pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::filesystem::path wavepathExecutable() { return WAVEPATH_EXE; }
 
 std::filesystem::path scratchDirectory(const std::string& name) {
   static int counter = 0;

@@ -34,6 +34,12 @@ WavepathProcess startWavepath(const std::vector<std::string>& args);
 // Waits for it to end (killing it after timeoutSeconds) and returns what it left.
 RunResult waitWavepath(WavepathProcess& process, int timeoutSeconds = 600);
 
+// Runs a shell command line; its stdout and stderr together end up in `out`.
+RunResult runShell(const std::string& command);
+
+// The wavepath executable under test.
+std::filesystem::path wavepathExecutable();
+
 // A fresh empty directory for one test's files.
 std::filesystem::path scratchDirectory(const std::string& name);
 
