@@ -256,6 +256,8 @@ TEST_P(FarmRefusals, CheckpointsOfOtherRendersAndDamagedOnesAreRefusedUntouched)
   expectOneErrorLine(clobber, "add --resume", 2);
   RunResult missing = runWavepath(renderArgs("out.exr", {"--checkpoint", (dir / "none.wpck").string(), "--resume"}));
   expectOneErrorLine(missing, "does not exist", 2);
+  RunResult same = runWavepath(renderArgs("out.exr", {"--checkpoint", (dir / "out.exr").string()}));
+  expectOneErrorLine(same, "is the output image too", 2);
 }
 
 TEST_P(FarmRefusals, MergeRefusesOverlapsGapsAndPartsOfAnotherFrame) {

@@ -363,7 +363,7 @@ int runRender(RenderOptions o) {
   }
   const FrameRange frames = framesToRender(o);
   checkOutputPath(framePath(o.output, frames.first));
-  checkCheckpointFlags(o.checkpoint);
+  checkCheckpointFlags(o.checkpoint, o.output);
   catchInterrupts();
 
   const Scene scene = loadSceneWithSky(o);

@@ -41,9 +41,11 @@ std::string sppText(uint64_t paths, uint64_t pixels) {
 
 }  // namespace
 
-void checkCheckpointFlags(const CheckpointOptions& o) {
+void checkCheckpointFlags(const CheckpointOptions& o, const std::string& output) {
   if (o.path.empty()) return;
   std::error_code ec;
+  if (std::filesystem::weakly_canonical(o.path, ec) == std::filesystem::weakly_canonical(output, ec))
+    throw FlagError("--checkpoint '" + o.path + "' is the output image too; give the checkpoint a name of its own");
   const bool exists = std::filesystem::exists(o.path, ec);
   if (o.resume && !exists)
     throw FlagError("--resume: checkpoint '" + o.path + "' does not exist; leave out --resume to start afresh");

@@ -16,9 +16,9 @@ struct CheckpointOptions {
 };
 
 // Throws a flag error before anything is rendered when the checkpoint flags cannot work:
-// --resume without the file, or a file in the way without --resume (it could be hours of
-// someone's work).
-void checkCheckpointFlags(const CheckpointOptions& options);
+// --resume without the file, a file in the way without --resume (it could be hours of
+// someone's work), or the checkpoint and the image `output` being one file.
+void checkCheckpointFlags(const CheckpointOptions& options, const std::string& output);
 
 struct RenderOutcome {
   RenderStats stats;
