@@ -6,7 +6,7 @@
 #include <bit>
 #include <cstring>
 #include <fstream>
-#include <iterator>
+#include <string_view>
 #include <sstream>
 #include <vector>
 
@@ -65,7 +65,17 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& c) {
 Checkpoint readCheckpoint(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) failRead(path, "it does not exist or cannot be read; check the path, or leave out --resume to start afresh");
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The whole file, then its checksum stripped: the text before it is what was hashed.
+  std::string all;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size > 0) {
+    all.resize(size_t(size));
+    in.read(all.data(), size);
+  }
+  if (!in) failRead(path, "it cannot be read; check the path and its permissions");
+  const std::string_view bytes = all;
   const std::string magicLine = std::string(kMagic) + "\n";
   if (bytes.size() < magicLine.size() || std::memcmp(bytes.data(), magicLine.data(), magicLine.size()) != 0)
     failRead(path, "it is not a wavepath checkpoint; check the path");
@@ -74,9 +84,9 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
   if (bytes.size() < kChecksumBytes || XXH3_64bits(bytes.data(), bytes.size() - kChecksumBytes) != stored)
     failRead(path, "it is truncated or damaged (checksum mismatch); resume from an intact copy or start afresh "
                    "without --resume");
+  all.resize(all.size() - kChecksumBytes);
 
   // The header: "key value" lines up to "end".
-  const std::string all(bytes.begin(), bytes.end() - kChecksumBytes);
   const size_t end = all.find("\nend\n");
   if (end == std::string::npos) failRead(path, "its header has no end line (damaged)");
   std::istringstream header(all.substr(magicLine.size(), end + 1 - magicLine.size()));
