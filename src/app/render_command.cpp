@@ -1,7 +1,6 @@
 // `wavepath render`: loads a glTF scene, renders it headless and writes PNG or EXR.
 #include <sys/resource.h>
 
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +15,7 @@
 #include "app/backend_factory.h"
 #include "app/interrupt.h"
 #include "app/commands.h"
+#include "app/frame_parts.h"
 #include "app/frame_sequence.h"
 #include "app/pose_uploader.h"
 #include "bvh/gpu_scene.h"
@@ -90,40 +90,6 @@ CLI::Validator finiteNumber(bool positive) {
       positive ? "POSITIVE" : "NUMBER");
 }
 
-// "--samples 16..31 --region 0,0,64,32 " for what a part holds, or "" for a whole render.
-std::string partText(const RenderSettings& s) {
-  std::string text;
-  if (s.firstSample != 0 || s.sampleEnd() != s.samplesPerPixel)
-    text += "samples " + std::to_string(s.firstSample) + ".." + std::to_string(s.sampleEnd() - 1) + " of ";
-  const PixelRegion r = s.pixelRegion();
-  if (!(r == PixelRegion{0, 0, s.width, s.height}))
-    text += "region " + std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) + "," +
-            std::to_string(r.y1) + " of ";
-  return text;
-}
-
-// The EXR header's record of what `image` holds (image/render_record.h).
-RenderRecord renderRecord(const RenderSettings& s, const RenderIdentity& identity, const DisplaySettings& display,
-                          bool autoExposure) {
-  RenderRecord r;
-  r.frameWidth = s.width;
-  r.frameHeight = s.height;
-  r.samplesPerPixel = s.samplesPerPixel;
-  r.firstSample = s.firstSample;
-  r.lastSample = s.sampleEnd() - 1;
-  const PixelRegion region = s.pixelRegion();
-  r.x0 = region.x0;
-  r.y0 = region.y0;
-  r.x1 = region.x1;
-  r.y1 = region.y1;
-  r.seed = s.seed;
-  r.sceneHash = identity.sceneHash;
-  r.settings = identity.settings;
-  r.display = display;
-  r.autoExposure = autoExposure;
-  return r;
-}
-
 // Renders one pose of the scene on `backend` and writes it to `output`, with the summary
 // line. Returns 0, or the exit code of a render a signal interrupted (nothing is written
 // then but its checkpoint).
@@ -168,43 +134,6 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
     printTimings(stats, gpuScene, uploader.lastUpdate());
   }
   return 0;
-}
-
-// Parses "X0,Y0,X1,Y1" (four whole numbers); throws a one-line wp::Error otherwise.
-PixelRegion parseRegion(const std::string& text) {
-  PixelRegion r;
-  uint32_t* fields[] = {&r.x0, &r.y0, &r.x1, &r.y1};
-  size_t at = 0;
-  for (int i = 0; i < 4; ++i) {
-    const size_t comma = i < 3 ? text.find(',', at) : text.size();
-    const std::string field = comma == std::string::npos ? "" : text.substr(at, comma - at);
-    const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), *fields[i]);
-    if (field.empty() || ec != std::errc() || ptr != field.data() + field.size())
-      throw Error("'" + text + "' is not four whole numbers X0,Y0,X1,Y1; give a crop such as --region 0,0,256,128");
-    at = comma + 1;
-  }
-  return r;
-}
-
-// Puts --samples and --region into the settings, checked against --spp and the image size.
-void applyPartFlags(RenderOptions& o) {
-  RenderSettings& s = o.settings;
-  if (!o.samples.empty()) {
-    const FrameRange range = parseFrameRange(o.samples, "--samples 0..15");
-    if (range.last >= s.samplesPerPixel)
-      throw FlagError("--samples " + o.samples + " goes past the " + std::to_string(s.samplesPerPixel) +
-                      " samples of --spp (numbered 0 to " + std::to_string(s.samplesPerPixel - 1) + ")");
-    s.firstSample = range.first;
-    s.endSample = range.last + 1;
-  }
-  if (!o.region.empty()) {
-    const PixelRegion r = parseRegion(o.region);
-    if (r.x0 >= r.x1 || r.y0 >= r.y1 || r.x1 > s.width || r.y1 > s.height)
-      throw FlagError("--region " + o.region + " is not a crop of the " + std::to_string(s.width) + "x" +
-                      std::to_string(s.height) + " image; give X0 < X1 <= width and Y0 < Y1 <= height (X1, Y1 "
-                      "exclusive)");
-    s.region = r;
-  }
 }
 
 // A CLI11 check that `parse` accepts the text; its wp::Error's message says why not.
@@ -367,7 +296,7 @@ int runRender(RenderOptions o) {
   catchInterrupts();
 
   const Scene scene = loadSceneWithSky(o);
-  applyPartFlags(o);
+  applyPartFlags(o.settings, o.samples, o.region);
   if (!o.frames.empty() && !scene.animation) {
     note(o.scene + " has no animation: every frame is the same image");
   } else if (!o.frames.empty() && frames.last / o.fps > scene.animation->duration) {
