@@ -206,12 +206,14 @@ WP_STRUCT_END(GpuEnvironment)
 WP_STRUCT(RenderParams)
   ThinLens camera;      // optics and placement of the camera (thin_lens.h)
   GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
-  uvec4 image;          // x: width, y: height, z: pixel count, w: seed
+  uvec4 image;          // x: width, y: height, z: pixels traced (of region), w: seed
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
                         // w: number of lights (triangles and punctual)
   uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
   uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
                         // z: WP_LIGHT_SELECTION_*, w: number of punctual (delta) lights
+  uvec4 region;         // the pixels traced (image.z of them, row-major): x, y: first column
+                        // and row, z: width, w: height (the whole image unless --region)
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

@@ -20,13 +20,15 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   if (!settings.skySampling) {
     p.sky.transform.z = 0.0f;  // the sky is then found by BSDF sampling alone
   }
-  uint32_t pixels = settings.width * settings.height;
+  const PixelRegion region = settings.pixelRegion();
+  const uint32_t pixels = uint32_t(region.pixels());
   p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);
+  p.region = glm::uvec4(region.x0, region.y0, region.width(), region.height());
   uint32_t mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
                   : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
                                                              : WP_MODE_BSDF;
   p.mode = glm::uvec4(settings.maxBounces, mode, settings.russianRouletteStart, uint32_t(gpuScene.lights.size()));
-  uint64_t totalPaths = uint64_t(pixels) * settings.samplesPerPixel;
+  uint64_t totalPaths = uint64_t(pixels) * settings.samplesInRange();
   uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
   p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, gpuScene.placedInstances,
                         maxPaths);
@@ -51,7 +53,13 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
   backend_.configure(params_);
-  pathsDone_ = 0;
+  firstPath_ = uint64_t(params_.image.z) * settings_.firstSample;
+  pathsDone_ = firstPath_;
+}
+
+void WavefrontRenderer::resume(const Accumulation& accumulation, uint64_t pathsDone) {
+  backend_.writeAccumulation(accumulation);
+  pathsDone_ = pathsDone;
 }
 
 void WavefrontRenderer::restart(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings,
@@ -97,20 +105,19 @@ void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats
   stats.samples += count;
 }
 
-RenderStats WavefrontRenderer::render(const std::function<void(double)>& progress) {
+RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats&)>& afterPass) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t total = uint64_t(params_.image.z) * settings_.samplesPerPixel;
-  const uint64_t end = pathsDone_ + total;
-  while (pathsDone_ < end) {
-    runNextPass(end, params_.counts.w, stats);
-    if (progress) {
-      progress(double(stats.samples) / double(total));
-    }
+  while (pathsDone_ < pathsEnd()) {
+    runNextPass(pathsEnd(), params_.counts.w, stats);
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (afterPass && !afterPass(stats)) break;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
+
+uint64_t WavefrontRenderer::pathsEnd() const { return uint64_t(params_.image.z) * settings_.sampleEnd(); }
 
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
   RenderStats stats;
@@ -141,17 +148,24 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   return stats;
 }
 
-uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.image.z); }
+uint32_t WavefrontRenderer::samplesPerPixelDone() const {
+  return uint32_t((pathsDone_ - firstPath_) / params_.image.z);
+}
 
-RadianceImage WavefrontRenderer::image() {
-  Accumulation acc = backend_.readAccumulation();
+Accumulation WavefrontRenderer::accumulation() { return backend_.readAccumulation(); }
+
+RadianceImage WavefrontRenderer::image() { return imageOf(backend_.readAccumulation()); }
+
+RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   RadianceImage image;
-  image.width = settings_.width;
-  image.height = settings_.height;
+  const PixelRegion region = settings_.pixelRegion();
+  image.width = region.width();
+  image.height = region.height();
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
-  const uint64_t fullSamples = pathsDone_ / pixels, startedPixels = pathsDone_ % pixels;
+  const uint64_t done = pathsDone_ - firstPath_;
+  const uint64_t fullSamples = done / pixels, startedPixels = done % pixels;
   for (size_t i = 0; i < pixels; ++i) {
     // Mid-pass (progressive rendering), the first startedPixels pixels have one more sample.
     double n = double(std::max<uint64_t>(fullSamples + (i < startedPixels ? 1 : 0), 1));

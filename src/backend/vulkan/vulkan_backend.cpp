@@ -428,4 +428,9 @@ Accumulation VulkanBackend::readAccumulation() {
   return result;
 }
 
+void VulkanBackend::writeAccumulation(const Accumulation& accumulation) {
+  std::vector<glm::vec4> both = accumulationBuffer(accumulation, pixelCount_);
+  accumulation_.upload(both.data(), both.size() * sizeof(glm::vec4));
+}
+
 }  // namespace wp

@@ -27,6 +27,7 @@ public:
   void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
+  void writeAccumulation(const Accumulation& accumulation) override;
 
 private:
   void createLayouts();
