@@ -351,6 +351,9 @@ int runRender(RenderOptions o) {
   checkCheckpointFlags(o.checkpoint, o.output);
   catchInterrupts();
 
+  // The device first: a missing or unusable one is one error line before any scene work.
+  BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
+  std::unique_ptr<Backend> backend = createBackend(choice);
   const Scene scene = loadSceneWithSky(o);
   applyPartFlags(o.settings, o.samples, o.region);
   if (!o.frames.empty() && !scene.animation) {
@@ -360,8 +363,6 @@ int runRender(RenderOptions o) {
     std::snprintf(duration, sizeof(duration), "%g", scene.animation->duration);
     note(o.scene + "'s animations end at " + duration + " s: later frames hold their last pose");
   }
-  BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
-  std::unique_ptr<Backend> backend = createBackend(choice);
   PoseUploader uploader;
   const double shutter = shutterSeconds(o, scene);
   std::optional<Camera> automaticCamera;
