@@ -44,7 +44,9 @@ FurnaceResult furnace(const std::string& backend, double metallic, double roughn
                            std::to_string(int(std::lround(roughness * 100)));
   const std::filesystem::path dir = scratchDirectory(name);
   std::ofstream(dir / "scene.gltf") << furnaceScene(metallic, roughness);
-  const int size = 20;
+  // Pixels wholly on the disc reach out to 97% of its radius at 64x64, so the grazing ring
+  // where rough single scattering loses most is in the mean (at 20x20 a fifth of it was not).
+  const int size = 64;
   const RunResult r = runWavepath({"render", (dir / "scene.gltf").string(), "-o", (dir / "out.exr").string(),
                                    "--width", std::to_string(size), "--height", std::to_string(size), "--spp", "64",
                                    "--backend", backend});
@@ -70,11 +72,13 @@ FurnaceResult furnace(const std::string& backend, double metallic, double roughn
   return result;
 }
 
-// The issue's white furnace: glTF's dielectric with base colour 1 at roughness 0, 0.25, 0.5
-// and 1, and a metal of F0 = 1 at roughness 0.5 and 1, reflect between 0.95 and 1 (energy
-// compensation gives back what single-scattering GGX loses: without it a rough white metal
-// reflects about 0.4 here, the dielectric 0.93). Noise is a few 1e-4 at 64 spp.
-TEST_P(Backends, WhiteFurnaceReflectsBetween95PercentAndAll) {
+// The white furnace of glTF's materials: a dielectric with base colour 1 at roughness 0,
+// 0.25, 0.5 and 1, and a metal of F0 = 1 at roughness 0.5 and 1. Energy compensation gives back
+// what single-scattering GGX loses, so each reflects 1 to within the interpolation error of
+// its albedo tables (bsdf_test): the test asks for at least 0.99, tighter than the [0.95, 1]
+// the issue asks for, because without the dielectric's compensation roughness 1 still gives
+// 0.953 here (without the metal's, about 0.4). Noise is below 1e-3 at 64 spp.
+TEST_P(Backends, WhiteFurnaceReflectsEverything) {
   const struct {
     double metallic, roughness;
   } cases[] = {{0, 0}, {0, 0.25}, {0, 0.5}, {0, 1}, {1, 0.5}, {1, 1}};
@@ -83,7 +87,7 @@ TEST_P(Backends, WhiteFurnaceReflectsBetween95PercentAndAll) {
     std::printf("%s, roughness %.2f: reflects %.4f (standard error %.5f)\n", c.metallic > 0 ? "metal" : "dielectric",
                 c.roughness, result.mean, result.standardError);
     SCOPED_TRACE((c.metallic > 0 ? "metal, roughness " : "dielectric, roughness ") + std::to_string(c.roughness));
-    EXPECT_GE(result.mean, 0.95);
+    EXPECT_GE(result.mean, 0.99);
     EXPECT_LE(result.mean, 1.0 + 4.0 * result.standardError);
   }
 }
