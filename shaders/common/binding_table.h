@@ -18,7 +18,8 @@
 //             WORDS (four uints to an RGBA32UI texel), NONE (not a texel buffer);
 //   access    UNIFORM (the render parameters), TEXELS (read-only; a scene array), STORAGE
 //             (read and written), WRITE (a queue the stage appends to), TEXEL_VIEW (Vulkan:
-//             the queue of the same name again, read as texels by the next stage);
+//             the queue of the same name again, read as texels by the next stage), CONSTANT
+//             (read-only texels the backend uploads once from a header's table);
 //   backends  ALL, or VULKAN for what OpenCL does without (its kernels read a queue through
 //             the queue's own pointer). Rows for ALL come first: OpenCL's kernel argument i
 //             is binding i.
@@ -32,7 +33,7 @@
   X(instances, 3, GpuInstance, 4, RECORD, TEXELS, ALL)                            \
   X(planes, 4, GpuPlane, 2, RECORD, TEXELS, ALL)                                  \
   X(materials, 5, GpuMaterial, 7, RECORD, TEXELS, ALL)                            \
-  X(lights, 6, GpuLight, 5, RECORD, TEXELS, ALL)                                  \
+  X(lights, 6, GpuLight, 6, RECORD, TEXELS, ALL)                                  \
   X(rays, 7, PathRay, 4, NONE, WRITE, ALL)                                        \
   X(hits, 8, HitRecord, 1, NONE, WRITE, ALL)                                      \
   X(shadowRays, 9, ShadowRay, 3, NONE, WRITE, ALL)                                \
@@ -47,7 +48,8 @@
   X(texels, 18, uint, 0, WORDS, TEXELS, ALL)                                      \
   X(rays, 19, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \
   X(hits, 20, HitRecord, 1, RECORD, TEXEL_VIEW, VULKAN)                           \
-  X(shadowRays, 21, ShadowRay, 3, RECORD, TEXEL_VIEW, VULKAN)
+  X(shadowRays, 21, ShadowRay, 3, RECORD, TEXEL_VIEW, VULKAN)                      \
+  X(bsdfTables, 22, float, 0, R32, CONSTANT, VULKAN)
 
 // What the rows mean:
 //   params          RenderParams, the render's settings
@@ -63,6 +65,9 @@
 //                   (environment.h)
 //   triangleShading parallel to the triangles
 //   texels          RGBA8 texels of every texture, r in the low byte
+//   bsdfTables      the BSDF's constant tables (energy_compensation.h), from the header's own
+//                   array. Vulkan only: OpenCL and C++ read that array as a constant, but
+//                   llvmpipe takes minutes to compile a shader that holds it.
 
 WP_BEGIN
 
@@ -76,6 +81,7 @@ WP_BEGIN
 #define WP_DEVICE_BUFFER_MEMBER_STORAGE(name, Element) WP_GLOBAL_MUTABLE_PTR(Element) name;
 #define WP_DEVICE_BUFFER_MEMBER_WRITE(name, Element) WP_GLOBAL_MUTABLE_PTR(Element) name;
 #define WP_DEVICE_BUFFER_MEMBER_TEXEL_VIEW(name, Element)
+#define WP_DEVICE_BUFFER_MEMBER_CONSTANT(name, Element)
 WP_STRUCT(DeviceBuffers)
   WP_BINDINGS(WP_DEVICE_BUFFER_MEMBER)
 WP_STRUCT_END(DeviceBuffers)
@@ -103,7 +109,7 @@ WP_STRUCT_END(DeviceBuffers)
 
 #if defined(__cplusplus)
 // The host's view of the table: what each binding is, for the backends.
-enum class BindingAccess { Uniform, Texels, Storage, Write, TexelView };
+enum class BindingAccess { Uniform, Texels, Storage, Write, TexelView, Constant };
 enum class TexelFormat { None, Rgba32ui, R32ui };
 
 struct BindingInfo {
@@ -129,6 +135,7 @@ struct BindingInfo {
 #define WP_HOST_ACCESS_STORAGE BindingAccess::Storage
 #define WP_HOST_ACCESS_WRITE BindingAccess::Write
 #define WP_HOST_ACCESS_TEXEL_VIEW BindingAccess::TexelView
+#define WP_HOST_ACCESS_CONSTANT BindingAccess::Constant
 #define WP_HOST_ON_OPENCL_ALL true
 #define WP_HOST_ON_OPENCL_VULKAN false
 inline constexpr BindingInfo kBindings[] = {WP_BINDINGS(WP_HOST_BINDING)};
@@ -143,6 +150,7 @@ inline constexpr uint kBindingCount = uint(sizeof(kBindings) / sizeof(kBindings[
 #define WP_HOST_ENUMERATOR_STORAGE(name, binding) name = binding,
 #define WP_HOST_ENUMERATOR_WRITE(name, binding) name = binding,
 #define WP_HOST_ENUMERATOR_TEXEL_VIEW(name, binding) name##TexelView = binding,
+#define WP_HOST_ENUMERATOR_CONSTANT(name, binding) name = binding,
 struct Binding {
   enum : uint { WP_BINDINGS(WP_HOST_ENUMERATOR) };
 };
@@ -156,6 +164,7 @@ struct Binding {
 #define WP_SCENE_ARRAY_ROW_STORAGE(name)
 #define WP_SCENE_ARRAY_ROW_WRITE(name)
 #define WP_SCENE_ARRAY_ROW_TEXEL_VIEW(name)
+#define WP_SCENE_ARRAY_ROW_CONSTANT(name)
 #define WP_FOR_EACH_SCENE_ARRAY WP_BINDINGS(WP_SCENE_ARRAY_ROW)
 #endif
 

@@ -164,7 +164,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
         GpuLight light = WP_LOAD(lights, s.light);
         float selection = (1.0f - params.sky.selectionProbability) *
                           lightSelectionProbability(WP_BUFFERS_ARG lightCount, lightSelection, light,
-                                                    rayOrigin(ray));
+                                                    rayOrigin(ray), time);
         weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
       }
     }
@@ -187,8 +187,11 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   Frame frame = makeFrame(shadingNormal);
   vec3 woLocal = frameToLocal(frame, wo);
 
+  // Light sampling, in every mode but BSDF-only; there it still reaches the punctual lights,
+  // which no BSDF sample can hit, and leaves the rest to BSDF sampling.
   float skyChoice = params.sky.selectionProbability;
-  if (mode != WP_MODE_BSDF && (lightCount > 0u || skyChoice > 0.0f)) {
+  uint punctualLights = params.punctualLightCount;
+  if ((mode != WP_MODE_BSDF || punctualLights > 0u) && (lightCount > 0u || skyChoice > 0.0f)) {
     RngDraw3 lightDraw = rngFloat3(rng);
     rng = lightDraw.state;
     vec3 u = lightDraw.u;
@@ -200,9 +203,12 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
       ls.pdf *= skyChoice;
     } else {
       float select = min((u.x - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_BUFFERS_ARG lightCount, lightSelection, s.position,
+      ls = sampleLight(WP_BUFFERS_ARG lightCount, lightSelection, s.position, time,
                        make_vec3(select, u.y, u.z));
       ls.pdf *= 1.0f - skyChoice;
+    }
+    if (mode == WP_MODE_BSDF && !ls.isDelta) {
+      ls.pdf = 0.0f;
     }
     BsdfEval e = noEval();
     if (ls.pdf > 0.0f) {
@@ -213,7 +219,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
     }
     vec3 unshadowed = e.fCos * ls.radiance;
     if (maxComponent(unshadowed) > 0.0f) {
-      float weight = mode == WP_MODE_MIS ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
+      float weight = mode == WP_MODE_MIS && !ls.isDelta ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
       vec3 origin = offsetRayOrigin(s.position, s.normal, ls.direction);
       r.shadow.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
       r.shadow.direction = make_vec4(ls.direction.x, ls.direction.y, ls.direction.z,

@@ -177,6 +177,8 @@ WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
 // GpuMaterial.info.x: which BSDF the material has.
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
+#define WP_MATERIAL_GLTF_DISNEY_DIFFUSE 2u  // the mixture with the seed's Disney diffuse base
+                                            // (extras.wavepath.diffuse = "disney")
 
 // A surface material, 112 bytes.
 //   baseColor: rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
@@ -199,22 +201,40 @@ WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
   F(uvec4, emissiveMap)
 WP_RECORD(GpuMaterial)
 
-// Emissive triangle in world space, with its alias-table entry for power-proportional
-// selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else
-// take alias), 80 bytes.
-//   v0: xyz: vertex 0, w: area
-//   edge1: xyz: v1 - v0, w: probability of selecting this light
-//   edge2: xyz: v2 - v0, w: alias threshold in [0, 1]
-//   emission: rgb: radiance (the material's factor), w: luminance of the mean emitted
-//     radiance over the triangle (texture included), its selection weight
-//   info: x: alias index, y: 1 if it emits on both sides (else the front only, the side of
-//     cross(edge1, edge2)), z: its GpuTriangleShading (the vertices in the same order as v0,
-//     edge1, edge2), w: emissive texture (WP_INVALID: none)
+// GpuLight.info.y: what the light is, in the low bits, and its flags above them.
+#define WP_LIGHT_TRIANGLE 0u     // an emissive triangle (an area light)
+#define WP_LIGHT_POINT 1u        // KHR_lights_punctual: a point
+#define WP_LIGHT_SPOT 2u         // a point emitting into a cone
+#define WP_LIGHT_DIRECTIONAL 3u  // a distant light (a sun) from one direction
+#define WP_LIGHT_KIND_MASK 3u
+#define WP_LIGHT_DOUBLE_SIDED 4u  // a triangle that emits on both sides (else the front only,
+                                  // the side of cross(edge1, edge2))
+
+// One light of next event estimation, with its alias-table entry for power-proportional
+// selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else take
+// alias): an emissive triangle in world space, or a glTF punctual light, whose position and
+// direction may move while the shutter is open. Read it through the accessors of lights.h.
+// 96 bytes.
+//   v0: triangle: xyz vertex 0, w area; punctual: xyz position at shutter open, w cos of a
+//     spot's outer cone angle
+//   edge1: triangle: xyz v1 - v0; punctual: xyz the unit direction it points (spot,
+//     directional) at shutter open; w: probability of selecting this light
+//   edge2: triangle: xyz v2 - v0; punctual: xyz position at shutter close; w: alias
+//     threshold in [0, 1]
+//   emission: rgb: radiance (triangle), radiant intensity in W/sr (point, spot) or
+//     irradiance in W/m^2 (directional); w: luminance of the triangle's mean emitted
+//     radiance (texture included), or of the intensity or irradiance
+//   motion: punctual: xyz the direction at shutter close, w cos of a spot's inner cone
+//     angle; unused by triangles
+//   info: x: alias index, y: WP_LIGHT_* kind | WP_LIGHT_DOUBLE_SIDED, z: the triangle's
+//     GpuTriangleShading (its vertices in the order of v0, edge1, edge2), w: its emissive
+//     texture (WP_INVALID: none)
 #define WP_FIELDS_GpuLight(F) \
   F(vec4, v0)                 \
   F(vec4, edge1)              \
   F(vec4, edge2)              \
   F(vec4, emission)           \
+  F(vec4, motion)             \
   F(uvec4, info)
 WP_RECORD(GpuLight)
 
@@ -238,12 +258,12 @@ WP_STRUCT(RenderParams)
   GpuEnvironment sky;  // the sky seen by rays that leave the scene (environment.h)
   uint width;          // of the image, in pixels
   uint height;
-  uint pixelCount;
+  uint pixelCount;     // pixels traced: the region's (row-major)
   uint seed;
   uint maxBounces;     // counted as Cycles counts them (integrator.h)
   uint mode;           // WP_MODE_*
   uint rouletteStart;  // the first bounce at which Russian roulette may end a path
-  uint lightCount;     // emissive triangles in the light table
+  uint lightCount;     // lights in the light table (triangles and punctual)
   uint planeCount;
   uint tlasRoot;       // the top-level BVH's root node
   uint instanceCount;  // placed instances
@@ -251,7 +271,13 @@ WP_STRUCT(RenderParams)
   uint bsdfFlags;      // WP_BSDF_*
   float contributionClamp;  // biased clamp on what a path adds after its first vertex; 0: off
   uint lightSelection;      // WP_LIGHT_SELECTION_*
-  uint unused;
+  uint punctualLightCount;  // punctual (delta) lights, the last of the light table
+  // The pixels traced: first column and row, width and height (the whole image unless
+  // --region).
+  uint regionX;
+  uint regionY;
+  uint regionWidth;
+  uint regionHeight;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

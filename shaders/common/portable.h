@@ -10,7 +10,8 @@
 // - no out/inout parameters: functions return structs;
 // - structs are declared with WP_STRUCT(Name) ... WP_STRUCT_END(Name);
 // - functions are declared WP_FN; code sits between WP_BEGIN and WP_END;
-// - no file-scope const variables (OpenCL wants __constant): use #define;
+// - no file-scope const variables (OpenCL wants __constant): use #define; a table of
+//   constants is WP_FLOAT_TABLE in C++ and OpenCL and a buffer in GLSL (energy_compensation.h);
 // - buffers are read with WP_LOAD(name, i) and written through WP_BUFFER(name); a function
 //   that touches them takes WP_BUFFERS first and is called with WP_BUFFERS_ARG
 //   (binding_table.h).

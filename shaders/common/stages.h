@@ -14,15 +14,24 @@
 
 WP_BEGIN
 
+// The image pixel (row-major over the whole image) of pixel `regionPixel` of the region
+// traced (row-major over the region).
+WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
+  uint column = params.regionX + regionPixel % params.regionWidth;
+  uint row = params.regionY + regionPixel / params.regionWidth;
+  return row * params.width + column;
+}
+
 // The camera ray of path slot `slot` of the pass `pc`: slot i is pixel (firstPixel + i) %
-// pixels of sample firstSample + (firstPixel + i) / pixels (see PassConstants), through a
-// uniformly jittered point of that pixel (a box filter) and a point uniform on the lens
-// aperture, at a shutter time uniform in [0, 1), with the path's random stream seeded from
-// (pixel, sample, seed).
+// pixels of the region of sample firstSample + (firstPixel + i) / pixels (see
+// PassConstants), through a uniformly jittered point of that pixel (a box filter) and a
+// point uniform on the lens aperture, at a shutter time uniform in [0, 1), with the path's
+// random stream seeded from (image pixel, sample, seed): a pixel's paths are the same
+// whichever region or batch of samples traces them.
 WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint pixels = params.pixelCount;
   uint linear = pc.firstPixel + slot;
-  uint pixel = linear % pixels;
+  uint pixel = imagePixel(params, linear % pixels);
   uint sampleIndex = pc.firstSample + linear / pixels;
 
   uint rng = rngSeed(pixel, sampleIndex, params.seed);

@@ -15,6 +15,7 @@
 #define WP_CL_ARGUMENT_STORAGE(name, Element) __global Element *name,
 #define WP_CL_ARGUMENT_WRITE(name, Element) __global Element *name,
 #define WP_CL_ARGUMENT_TEXEL_VIEW(name, Element)
+#define WP_CL_ARGUMENT_CONSTANT(name, Element)
 #define WP_KERNEL_ARGS WP_BINDINGS(WP_CL_ARGUMENT) PassConstants pc
 
 // The kernel's buffer arguments as the DeviceBuffers bundle the stage functions take.
@@ -25,6 +26,7 @@
 #define WP_CL_BUNDLE_MEMBER_STORAGE(name) name,
 #define WP_CL_BUNDLE_MEMBER_WRITE(name) name,
 #define WP_CL_BUNDLE_MEMBER_TEXEL_VIEW(name)
+#define WP_CL_BUNDLE_MEMBER_CONSTANT(name)
 #define WP_KERNEL_BUFFERS {WP_BINDINGS(WP_CL_BUNDLE_MEMBER)}
 
 // Every dispatch runs workgroups of WP_WORKGROUP_SIZE, which lets the compiler specialise.

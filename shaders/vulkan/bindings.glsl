@@ -19,6 +19,7 @@ layout(push_constant) uniform Push { PassConstants pc; };
 #define WP_GLSL_TEXELS(name, index, Element, stride, format) \
   layout(binding = index) uniform usamplerBuffer name##Texels; WP_GLSL_LOADER_##format(name, Element, stride)
 #define WP_GLSL_TEXEL_VIEW(name, index, Element, stride, format) WP_GLSL_TEXELS(name, index, Element, stride, format)
+#define WP_GLSL_CONSTANT(name, index, Element, stride, format) WP_GLSL_TEXELS(name, index, Element, stride, format)
 
 // A record of `stride` texels reads one field per texel, in the order WP_FIELDS_<Element>
 // lists them; the texel buffer is a parameter because the field macro cannot name it.
@@ -39,3 +40,7 @@ layout(push_constant) uniform Push { PassConstants pc; };
   uint name##At(uint i) { return texelFetch(name##Texels, int(i >> 2u))[i & 3u]; }
 
 WP_BINDINGS(WP_GLSL_BINDING)
+
+// The BSDF's constant tables (energy_compensation.h reads WP_GGX_ALBEDO; C++ and OpenCL
+// index the header's array).
+#define WP_GGX_ALBEDO(i) WP_LOAD(bsdfTables, i)

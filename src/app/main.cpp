@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   CLI::App* render = wp::addRenderCommand(app, renderOptions);
   wp::ViewOptions viewOptions;
   CLI::App* view = wp::addViewCommand(app, viewOptions);
+  wp::MergeOptions mergeOptions;
+  CLI::App* merge = wp::addMergeCommand(app, mergeOptions);
   CLI::App* devices = wp::addDevicesCommand(app);
   try {
     app.parse(argc, argv);
@@ -33,9 +35,15 @@ int main(int argc, char** argv) {
       viewOptions.sampleLimit = view->count("--spp") > 0;
       return wp::runView(viewOptions);
     }
+    if (merge->parsed()) {
+      return wp::runMerge(mergeOptions);
+    }
     if (devices->parsed()) {
       return wp::runDevices();
     }
+  } catch (const wp::FlagError& e) {
+    std::fprintf(stderr, "wavepath: error: %s; run 'wavepath --help' for usage\n", e.what());
+    return 2;
   } catch (const wp::Error& e) {
     std::fprintf(stderr, "wavepath: error: %s\n", e.what());
     return 1;

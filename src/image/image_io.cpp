@@ -1,20 +1,19 @@
 // PNG and EXR output written atomically, and EXR input, through stb_image_write and tinyexr.
 #include "image/image_io.h"
 
-#include <fcntl.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
-#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "shaders/common/exposure.h"
 #include "shaders/common/tone_curves.h"
@@ -38,48 +37,6 @@ fs::path directoryOf(const fs::path& path) { return path.has_parent_path() ? pat
 
 [[noreturn]] void failRead(const fs::path& path, const std::string& reason) {
   throw Error("cannot read EXR '" + path.string() + "': " + reason);
-}
-
-// Closes and removes the temporary file unless the write succeeded and renamed it into place.
-struct TempFileGuard {
-  fs::path path;
-  int fd = -1;
-  bool renamed = false;
-  ~TempFileGuard() {
-    if (fd >= 0) ::close(fd);
-    if (!renamed) ::unlink(path.c_str());
-  }
-};
-
-std::string systemError(int error) { return std::strerror(error); }
-
-// Writes `bytes` to a uniquely named hidden file beside `path`, flushes it to disk and
-// renames it over `path`: rename is atomic within a directory, so readers (and a crash) see
-// either the old file or the complete new one, never a partial image.
-void writeFileAtomically(const fs::path& path, const std::vector<unsigned char>& bytes) {
-  static std::atomic<unsigned> counter{0};
-  std::string tempName = ".";  // hidden; appended piecewise to dodge a GCC 12 -Wrestrict false positive
-  tempName += path.filename().string();
-  tempName += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  fs::path tempPath = directoryOf(path) / tempName;
-  int fd = ::open(tempPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) failWrite(path, systemError(errno) + "; check the directory's permissions and free space");
-  TempFileGuard temp{tempPath, fd};
-  size_t written = 0;
-  while (written < bytes.size()) {
-    ssize_t n = ::write(temp.fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) failWrite(path, systemError(errno) + "; check free space and try again");
-    written += static_cast<size_t>(n);
-  }
-  int syncError = ::fsync(temp.fd) == 0 ? 0 : errno;
-  int closeError = ::close(temp.fd) == 0 ? 0 : errno;
-  temp.fd = -1;
-  if (syncError || closeError)
-    failWrite(path, systemError(syncError ? syncError : closeError) + "; check free space and try again");
-  if (::rename(temp.path.c_str(), path.c_str()) != 0)
-    failWrite(path, systemError(errno) + "; check the output path");
-  temp.renamed = true;
 }
 
 void checkImageShape(const fs::path& path, const RadianceImage& image) {
@@ -153,8 +110,21 @@ std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& 
     std::strncpy(channels[c].name, names[c], sizeof(channels[c].name) - 1);
   }
 
+  std::vector<HeaderAttribute> attributes;
+  if (image.record) attributes = recordAttributes(*image.record);
+  std::vector<EXRAttribute> exrAttributes(attributes.size());
+  for (size_t a = 0; a < attributes.size(); ++a) {
+    std::memset(&exrAttributes[a], 0, sizeof(EXRAttribute));
+    std::strncpy(exrAttributes[a].name, attributes[a].name.c_str(), sizeof(exrAttributes[a].name) - 1);
+    std::strncpy(exrAttributes[a].type, attributes[a].type.c_str(), sizeof(exrAttributes[a].type) - 1);
+    exrAttributes[a].value = attributes[a].value.data();
+    exrAttributes[a].size = int(attributes[a].value.size());
+  }
+
   EXRHeader header;
   InitEXRHeader(&header);
+  header.num_custom_attributes = int(exrAttributes.size());
+  header.custom_attributes = exrAttributes.data();
   header.num_channels = channelCount;
   header.channels = channels.data();
   header.pixel_types = pixelTypes.data();
@@ -217,7 +187,7 @@ void writePng(const fs::path& path, uint32_t width, uint32_t height, const std::
   checkOutputPath(path);
   std::vector<unsigned char> bytes = encodePng(width, height, pixels);
   if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); capture a smaller window");
-  writeFileAtomically(path, bytes);
+  writeFileAtomically(path, bytes, "image");
 }
 
 void writeImage(const fs::path& path, const RadianceImage& image, const DisplaySettings& display) {
@@ -230,7 +200,7 @@ void writeImage(const fs::path& path, const RadianceImage& image, const DisplayS
   } else {
     bytes = encodeExr(path, image);
   }
-  writeFileAtomically(path, bytes);
+  writeFileAtomically(path, bytes, "image");
 }
 
 RadianceImage readExr(const fs::path& path) {
@@ -263,7 +233,15 @@ RadianceImage readExr(const fs::path& path) {
   if (LoadEXRImageFromFile(&exr.image, &exr.header, path.c_str(), &err) != TINYEXR_SUCCESS)
     failRead(path, takeExrMessage(err) + "; check that the file is intact");
 
+  std::vector<HeaderAttribute> attributes;
+  for (int a = 0; a < exr.header.num_custom_attributes; ++a) {
+    const EXRAttribute& attribute = exr.header.custom_attributes[a];
+    std::vector<unsigned char> value;
+    if (attribute.value != nullptr && attribute.size > 0) value.assign(attribute.value, attribute.value + attribute.size);
+    attributes.push_back({attribute.name, attribute.type, std::move(value)});
+  }
   RadianceImage result;
+  result.record = recordFromAttributes(attributes, path.string());
   result.width = uint32_t(exr.image.width);
   result.height = uint32_t(exr.image.height);
   size_t pixels = size_t(result.width) * result.height;

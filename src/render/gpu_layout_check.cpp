@@ -15,10 +15,10 @@ static_assert(sizeof(GpuTexture) == 16);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(sizeof(GpuPlane) == 32);
 static_assert(sizeof(GpuMaterial) == 112);
-static_assert(sizeof(GpuLight) == 80);
+static_assert(sizeof(GpuLight) == 96);
 static_assert(sizeof(ThinLens) == 80);
 static_assert(sizeof(GpuEnvironment) == 32);
-static_assert(sizeof(RenderParams) == 176);
+static_assert(sizeof(RenderParams) == 192);
 static_assert(sizeof(PathRay) == 64);
 static_assert(sizeof(HitRecord) == 16);
 static_assert(sizeof(ShadowRay) == 48);
@@ -31,6 +31,7 @@ static_assert(offsetof(RenderParams, width) == 112);
 static_assert(offsetof(RenderParams, maxBounces) == 128);
 static_assert(offsetof(RenderParams, planeCount) == 144);
 static_assert(offsetof(RenderParams, bsdfFlags) == 160);
+static_assert(offsetof(RenderParams, regionX) == 176);
 static_assert(offsetof(GpuEnvironment, width) == 16);
 
 // The binding table: each row's stride is its element's size in 16-byte texels (what the

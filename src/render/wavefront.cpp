@@ -20,10 +20,15 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   if (!settings.skySampling) {
     p.sky.selectionProbability = 0.0f;  // the sky is then found by BSDF sampling alone
   }
+  const PixelRegion region = settings.pixelRegion();
   p.width = settings.width;
   p.height = settings.height;
-  p.pixelCount = settings.width * settings.height;
+  p.pixelCount = uint32_t(region.pixels());
   p.seed = settings.seed;
+  p.regionX = region.x0;
+  p.regionY = region.y0;
+  p.regionWidth = region.width();
+  p.regionHeight = region.height();
   p.maxBounces = settings.maxBounces;
   p.mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
            : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
@@ -33,13 +38,14 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.planeCount = uint32_t(gpuScene.planes.size());
   p.tlasRoot = gpuScene.tlasRoot;
   p.instanceCount = gpuScene.placedInstances;
-  uint64_t totalPaths = uint64_t(p.pixelCount) * settings.samplesPerPixel;
+  uint64_t totalPaths = uint64_t(p.pixelCount) * settings.samplesInRange();
   p.maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
   p.bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
                 (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
   p.contributionClamp = settings.contributionClamp;
   p.lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
                                                                             : WP_LIGHT_SELECTION_POWER;
+  p.punctualLightCount = gpuScene.punctualLightCount;
   return p;
 }
 
@@ -55,7 +61,13 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
   backend_.configure(params_);
-  pathsDone_ = 0;
+  firstPath_ = uint64_t(params_.pixelCount) * settings_.firstSample;
+  pathsDone_ = firstPath_;
+}
+
+void WavefrontRenderer::resume(const Accumulation& accumulation, uint64_t pathsDone) {
+  backend_.writeAccumulation(accumulation);
+  pathsDone_ = pathsDone;
 }
 
 void WavefrontRenderer::restart(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings,
@@ -100,20 +112,19 @@ void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats
   stats.samples += count;
 }
 
-RenderStats WavefrontRenderer::render(const std::function<void(double)>& progress) {
+RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats&)>& afterPass) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t total = uint64_t(params_.pixelCount) * settings_.samplesPerPixel;
-  const uint64_t end = pathsDone_ + total;
-  while (pathsDone_ < end) {
-    runNextPass(end, params_.maxPaths, stats);
-    if (progress) {
-      progress(double(stats.samples) / double(total));
-    }
+  while (pathsDone_ < pathsEnd()) {
+    runNextPass(pathsEnd(), params_.maxPaths, stats);
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (afterPass && !afterPass(stats)) break;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
+
+uint64_t WavefrontRenderer::pathsEnd() const { return uint64_t(params_.pixelCount) * settings_.sampleEnd(); }
 
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
   RenderStats stats;
@@ -144,17 +155,24 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   return stats;
 }
 
-uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.pixelCount); }
+uint32_t WavefrontRenderer::samplesPerPixelDone() const {
+  return uint32_t((pathsDone_ - firstPath_) / params_.pixelCount);
+}
 
-RadianceImage WavefrontRenderer::image() {
-  Accumulation acc = backend_.readAccumulation();
+Accumulation WavefrontRenderer::accumulation() { return backend_.readAccumulation(); }
+
+RadianceImage WavefrontRenderer::image() { return imageOf(backend_.readAccumulation()); }
+
+RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   RadianceImage image;
-  image.width = settings_.width;
-  image.height = settings_.height;
+  const PixelRegion region = settings_.pixelRegion();
+  image.width = region.width();
+  image.height = region.height();
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
-  const uint64_t fullSamples = pathsDone_ / pixels, startedPixels = pathsDone_ % pixels;
+  const uint64_t done = pathsDone_ - firstPath_;
+  const uint64_t fullSamples = done / pixels, startedPixels = done % pixels;
   for (size_t i = 0; i < pixels; ++i) {
     // Mid-pass (progressive rendering), the first startedPixels pixels have one more sample.
     double n = double(std::max<uint64_t>(fullSamples + (i < startedPixels ? 1 : 0), 1));

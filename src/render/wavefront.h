@@ -33,9 +33,11 @@ public:
   // flight lowered to what the device can hold.
   WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
-  // Traces samplesPerPixel samples of every pixel, calling progress(fraction) after each
-  // pass. Accumulates onto earlier calls' samples.
-  RenderStats render(const std::function<void(double)>& progress);
+  // Traces the samples [firstSample, sampleEnd()) of every pixel of the region (the
+  // settings') that are not traced yet, calling afterPass with the figures so far after
+  // each pass; when it returns false the render stops there, to go on by a later call
+  // (possibly after resume() in another process).
+  RenderStats render(const std::function<bool(const RenderStats&)>& afterPass);
 
   // Progressive rendering (the viewer): runs whole passes, continuing where the last one
   // stopped, until `budgetSeconds` is spent (at least one pass) or every pixel has
@@ -50,8 +52,22 @@ public:
   // Samples every pixel has so far (some pixels may have one more, mid-pass).
   uint32_t samplesPerPixelDone() const;
 
-  // Per-pixel mean radiance and the variance of that mean, from the samples so far.
+  // Per-pixel mean radiance and the variance of that mean, from the samples so far, over the
+  // region rendered.
   RadianceImage image();
+  // The same from an accumulation read earlier (accumulation()).
+  RadianceImage imageOf(const Accumulation& accumulation) const;
+
+  // Where a render stands, for a checkpoint: the paths traced so far in render order (path
+  // k is sample k / pixels of region pixel k % pixels, counted from sample 0) and the
+  // per-pixel sums they were accumulated into. Paths [firstSample * pixels, pathsDone()) are
+  // in the sums.
+  uint64_t pathsDone() const { return pathsDone_; }
+  uint64_t pathsEnd() const;
+  Accumulation accumulation();
+  // Continues a render from a checkpoint's state, made by a renderer of the same scene and
+  // settings (the sums are loaded as they were, so the render goes on bit for bit).
+  void resume(const Accumulation& accumulation, uint64_t pathsDone);
 
 private:
   void runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats);
@@ -62,8 +78,9 @@ private:
   Backend& backend_;
   RenderSettings settings_;
   gpu::RenderParams params_;
-  // Paths traced since the last configure, in render order: path k is sample k / pixels of
-  // pixel k % pixels.
+  // Paths traced, in render order: path k is sample k / pixels of region pixel k % pixels.
+  // A render starts at path firstPath_ (sample settings.firstSample).
+  uint64_t firstPath_ = 0;
   uint64_t pathsDone_ = 0;
   // Measured seconds per path of the last progressive pass; 0 before the first.
   double secondsPerPath_ = 0.0;

@@ -42,6 +42,7 @@ public:
   void dispatch(const StageDispatch& stage) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
+  void writeAccumulation(const Accumulation& accumulation) override;
 
 private:
   // Builds the program and kernels with (`motion`) or without WP_MOTION_BLUR.

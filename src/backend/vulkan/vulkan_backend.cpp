@@ -8,6 +8,7 @@
 #include "backend/vulkan/vk_check.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
+#include "shaders/common/ggx_albedo_table.h"
 #include "spirv/accumulate_spv.h"
 #include "spirv/advance_spv.h"
 #include "spirv/connect_motion_spv.h"
@@ -53,7 +54,8 @@ VkDescriptorType descriptorType(uint32_t binding) {
   switch (gpu::kBindings[binding].access) {
     case gpu::BindingAccess::Uniform: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case gpu::BindingAccess::Texels:
-    case gpu::BindingAccess::TexelView: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    case gpu::BindingAccess::TexelView:
+    case gpu::BindingAccess::Constant: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     case gpu::BindingAccess::Storage:
     case gpu::BindingAccess::Write: break;
   }
@@ -103,6 +105,8 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
     VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
   }
   countersReadback_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  bsdfTables_ = VulkanBuffer(*context_, sizeof(gpu::kGgxAlbedo), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
+  bsdfTables_.upload(gpu::kGgxAlbedo, sizeof(gpu::kGgxAlbedo));
 }
 
 VulkanBackend::~VulkanBackend() {
@@ -123,6 +127,7 @@ VulkanBackend::~VulkanBackend() {
   vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
   // Buffers are members and release themselves before context_ is destroyed.
   sceneBuffers_ = {};
+  bsdfTables_ = {};
   params_ = {};
   rays_ = {};
   hits_ = {};
@@ -255,6 +260,7 @@ void VulkanBackend::writeDescriptors() {
   buffers[gpu::Binding::pathRadiance] = &pathRadiance_;
   buffers[gpu::Binding::counters] = &counters_;
   buffers[gpu::Binding::accumulation] = &accumulation_;
+  buffers[gpu::Binding::bsdfTables] = &bsdfTables_;
   for (size_t i = 0; i < kSceneBindings.size(); ++i) {
     buffers[kSceneBindings[i]] = &sceneBuffers_[i];
   }
@@ -408,6 +414,11 @@ Accumulation VulkanBackend::readAccumulation() {
   result.sum.assign(both.begin(), both.begin() + pixelCount_);
   result.sumSquares.assign(both.begin() + pixelCount_, both.end());
   return result;
+}
+
+void VulkanBackend::writeAccumulation(const Accumulation& accumulation) {
+  std::vector<glm::vec4> both = accumulationBuffer(accumulation, pixelCount_);
+  accumulation_.upload(both.data(), both.size() * sizeof(glm::vec4));
 }
 
 }  // namespace wp

@@ -27,6 +27,7 @@ public:
   void dispatch(const StageDispatch& stage) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
+  void writeAccumulation(const Accumulation& accumulation) override;
 
 private:
   void createLayouts();
@@ -51,6 +52,7 @@ private:
   std::vector<VkBufferView> texelViews_;
 
   std::array<VulkanBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
+  VulkanBuffer bsdfTables_;  // gpu::kGgxAlbedo (energy_compensation.h)
   VulkanBuffer params_;
   VulkanBuffer rays_;
   VulkanBuffer hits_;
