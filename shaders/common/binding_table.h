@@ -91,9 +91,9 @@ WP_STRUCT_END(DeviceBuffers)
 #define WP_LOAD(name, i) buffers.name[i]
 #define WP_BUFFER(name) buffers.name
 #else
-// OpenCL: a pointer to the kernel's bundle, so that a call the compiler does not inline
-// passes one pointer rather than a copy of every buffer's.
-#define WP_BUFFERS const DeviceBuffers *buffers,
+// OpenCL: a pointer to the kernel's bundle in local memory (WP_KERNEL_BUFFERS), so that a
+// call the compiler does not inline passes one pointer rather than a copy of every buffer's.
+#define WP_BUFFERS __local const DeviceBuffers *buffers,
 #define WP_LOAD(name, i) buffers->name[i]
 #define WP_BUFFER(name) buffers->name
 #endif

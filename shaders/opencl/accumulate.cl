@@ -4,6 +4,6 @@
 #include "common/stages.h"
 
 WP_KERNEL void accumulate(WP_KERNEL_ARGS) {
-  DeviceBuffers buffers = WP_KERNEL_BUFFERS;
+  WP_KERNEL_BUFFERS(buffers)
   accumulateStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

@@ -6,6 +6,6 @@
 #include "common/stages.h"
 
 WP_KERNEL void advance(WP_KERNEL_ARGS) {
-  DeviceBuffers buffers = WP_KERNEL_BUFFERS;
+  WP_KERNEL_BUFFERS(buffers)
   advanceStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

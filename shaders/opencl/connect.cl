@@ -3,6 +3,6 @@
 #include "common/stages.h"
 
 WP_KERNEL void connect(WP_KERNEL_ARGS) {
-  DeviceBuffers buffers = WP_KERNEL_BUFFERS;
+  WP_KERNEL_BUFFERS(buffers)
   connectStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

@@ -3,6 +3,6 @@
 #include "common/stages.h"
 
 WP_KERNEL void extend(WP_KERNEL_ARGS) {
-  DeviceBuffers buffers = WP_KERNEL_BUFFERS;
+  WP_KERNEL_BUFFERS(buffers)
   extendStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

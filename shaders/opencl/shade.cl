@@ -19,10 +19,10 @@ WP_KERNEL void shade(WP_KERNEL_ARGS) {
     rayCount = 0u;
     shadowCount = 0u;
   }
-  barrier(CLK_LOCAL_MEM_FENCE);
+  // Its barrier also orders the counts' reset before the appends.
+  WP_KERNEL_BUFFERS(buffers)
   uint i = get_global_id(0);
   RenderParams params = *paramsBuffer;
-  DeviceBuffers buffers = WP_KERNEL_BUFFERS;
   WorkQueue continuations = continuationQueue(params, pc);
   WorkQueue shadowRayQueue = shadowQueue(pc.bounce);
   ShadeResult r;
