@@ -9,12 +9,15 @@
 namespace wp::gltf {
 
 // Every extension the loader implements. Add an entry here when the loader learns one.
-inline constexpr std::array<std::string_view, 5> kSupportedExtensions{
+inline constexpr std::array<std::string_view, 8> kSupportedExtensions{
+    "EXT_meshopt_compression",
+    "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
     "KHR_materials_transmission",
     "KHR_materials_volume",
+    "KHR_mesh_quantization",
 };
 
 // Throws when extensionsRequired names an extension outside kSupportedExtensions; warns

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <stb_image.h>
 
 #include "core/error.h"
@@ -95,6 +96,75 @@ int maxNesting(std::string_view json) {
   return maxDepth;
 }
 
+// Meshopt encoders (gltfpack) leave the fallback buffer of EXT_meshopt_compression without
+// data (no uri), which tinygltf refuses in a .gltf and fills with the BIN chunk in a .glb.
+// No byte of it is read: every view on it is decoded from its compressed buffer instead
+// (gltf_compression.cpp). So each such buffer is given one byte. Returns whether it changed any.
+bool fillMeshoptFallbacks(nlohmann::json& json, bool binary) {
+  if (!json.contains("buffers") || !json["buffers"].is_array()) return false;
+  bool changed = false;
+  nlohmann::json& buffers = json["buffers"];
+  // In a .glb, buffer 0 without a uri is the BIN chunk.
+  for (size_t b = binary ? 1 : 0; b < buffers.size(); ++b) {
+    nlohmann::json& buffer = buffers[b];
+    const bool fallback = buffer.is_object() && !buffer.contains("uri") &&
+                          buffer.value("/extensions/EXT_meshopt_compression/fallback"_json_pointer, false);
+    if (!fallback) continue;
+    buffer["uri"] = "data:application/octet-stream;base64,AA==";
+    buffer["byteLength"] = 1;
+    changed = true;
+  }
+  return changed;
+}
+
+// The indices accessor of a KHR_draco_mesh_compression primitive has no buffer view, which
+// tinygltf refuses; the Draco data holds the indices (gltf_compression.cpp reads them from
+// there), so the primitive's reference to it is dropped. Returns whether it dropped any.
+bool dropDracoIndices(nlohmann::json& json) {
+  if (!json.contains("meshes") || !json["meshes"].is_array()) return false;
+  bool changed = false;
+  for (nlohmann::json& mesh : json["meshes"]) {
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (nlohmann::json& primitive : mesh["primitives"]) {
+      if (primitive.is_object() && primitive.contains("indices") &&
+          primitive.contains("/extensions/KHR_draco_mesh_compression"_json_pointer)) {
+        primitive.erase("indices");
+        changed = true;
+      }
+    }
+  }
+  return changed;
+}
+
+// The file with its JSON adapted to what tinygltf 2.7 reads of compressed meshes (above);
+// other files come back unchanged.
+std::vector<unsigned char> adaptedForTinygltf(std::vector<unsigned char> bytes, bool binary) {
+  const std::string_view text = jsonText(bytes, binary);
+  if (text.find("EXT_meshopt_compression") == std::string_view::npos &&
+      text.find("KHR_draco_mesh_compression") == std::string_view::npos) {
+    return bytes;
+  }
+  nlohmann::json json = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+  if (!json.is_object()) return bytes;  // tinygltf says what is wrong with it
+  const bool filled = fillMeshoptFallbacks(json, binary);
+  if (!dropDracoIndices(json) && !filled) return bytes;
+  std::string rewritten = json.dump();
+  if (!binary) return {rewritten.begin(), rewritten.end()};
+  rewritten.resize((rewritten.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned
+  uint32_t jsonLength = 0;
+  std::memcpy(&jsonLength, bytes.data() + 12, 4);
+  const size_t rest = std::min<size_t>(size_t(20) + jsonLength, bytes.size());
+  std::vector<unsigned char> out(bytes.begin(), bytes.begin() + 12);
+  const auto put32 = [&out](size_t at, uint32_t value) { std::memcpy(out.data() + at, &value, 4); };
+  out.resize(20);
+  put32(12, static_cast<uint32_t>(rewritten.size()));
+  std::memcpy(out.data() + 16, "JSON", 4);
+  out.insert(out.end(), rewritten.begin(), rewritten.end());
+  out.insert(out.end(), bytes.begin() + static_cast<std::ptrdiff_t>(rest), bytes.end());
+  put32(8, static_cast<uint32_t>(out.size()));
+  return out;
+}
+
 bool hasGlbExtension(const fs::path& file) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -138,7 +208,7 @@ void warnEachLine(const fs::path& file, const std::string& text) {
 }  // namespace
 
 tinygltf::Model parseGltfFile(const fs::path& file) {
-  const std::vector<unsigned char> bytes = readWholeFile(file);
+  std::vector<unsigned char> bytes = readWholeFile(file);
   const bool binary = hasBinaryMagic(bytes);
   if (!binary && hasGlbExtension(file)) {
     fileError(file, "is not a binary glTF file (it does not start with \"glTF\"); re-export it");
@@ -147,6 +217,7 @@ tinygltf::Model parseGltfFile(const fs::path& file) {
     fileError(file, "its JSON nests deeper than " + std::to_string(kMaxJsonDepth) +
                         " levels, which no real glTF file does; re-export it");
   }
+  bytes = adaptedForTinygltf(std::move(bytes), binary);
 
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(decodeImage, nullptr);

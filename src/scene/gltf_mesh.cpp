@@ -175,7 +175,7 @@ private:
     if (source.uv >= 0 || !mesh_.uvs.empty()) {
       std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
       if (source.uv >= 0) {
-        uvs = readTexCoords(ctx_, source.uv, where);
+        uvs = readTexCoords(ctx_, source.uv, where, "TEXCOORD_0");
         if (uvs.size() != positions.size()) {
           fail(ctx_, where,
                "TEXCOORD_0 has " + std::to_string(uvs.size()) + " vertices but POSITION " +
