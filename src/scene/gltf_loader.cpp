@@ -363,6 +363,10 @@ private:
 }  // namespace
 
 Scene loadScene(const std::filesystem::path& file, bool defaultSky) {
+  // The warnings of a large file are summed up before the render (or the error) comes.
+  struct FlushWarnings {
+    ~FlushWarnings() { flushWarnings(); }
+  } flush;
   const tinygltf::Model model = gltf::parseGltfFile(file);
   const gltf::Context ctx{file.string(), model};
   gltf::checkExtensions(ctx);
