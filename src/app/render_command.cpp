@@ -74,20 +74,6 @@ FrameRange framesToRender(const RenderOptions& o) {
   return range;
 }
 
-// A CLI11 check that a number is finite and, with `positive`, above 0 (CLI11's own range
-// checks let NaN through).
-CLI::Validator finiteNumber(bool positive) {
-  return CLI::Validator(
-      [positive](std::string& text) -> std::string {
-        double value = 0.0;
-        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || (positive && !(value > 0.0))) {
-          return "'" + text + "' is not a " + (positive ? "number above 0" : "finite number");
-        }
-        return "";
-      },
-      positive ? "POSITIVE" : "NUMBER");
-}
-
 // Renders one pose of the scene on `backend` and writes it to `output`, with the summary line.
 void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, PoseUploader& uploader,
                  Scene scene, const std::string& output) {
@@ -135,7 +121,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
           },
           "A..B"))
       ->excludes(cmd->get_option("--time"));
-  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(finiteNumber(true));
+  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(CLI::PositiveNumber);
   return cmd;
 }
 
@@ -190,8 +176,7 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
                 "Vulkan: run with the Khronos validation layer (with synchronization validation); OpenCL: build the "
                 "kernels with warnings as errors and check the queue counters; fail on any error");
   addCameraFlags(*cmd, o.camera);
-  cmd->add_option("--time", o.time, "Pose the scene's animations at this time, in seconds (default: the rest pose)")
-      ->check(finiteNumber(false));
+  cmd->add_option("--time", o.time, "Pose the scene's animations at this time, in seconds (default: the rest pose)");
   cmd->add_option("--sky", o.sky, "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar");
   cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
   cmd->add_option("--sky-rotation", o.skyRotationDegrees, "Rotation of the sky about +y, in degrees");
@@ -215,6 +200,7 @@ Scene loadSceneWithSky(RenderOptions& o) {
   if (!o.sky.empty()) {
     scene.sky = loadEnvironmentMap(o.sky);
   }
+  checkSkyIntensity(scene.sky, o.skyIntensity);
   scene.skyIntensity = o.skyIntensity;
   scene.skyRotation = glm::radians(o.skyRotationDegrees);
   resolveImageSize(o, scene);

@@ -2,12 +2,15 @@
 #include "image/image_io.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <csignal>
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
@@ -16,6 +19,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/file_read.h"
 #include "shaders/common/exposure.h"
 #include "shaders/common/tone_curves.h"
 
@@ -53,10 +57,43 @@ struct TempFileGuard {
 
 std::string systemError(int error) { return std::strerror(error); }
 
+// The signals that end a process by default: Ctrl-C, kill, a closed terminal, Ctrl-\.
+constexpr std::array<int, 4> kTerminationSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+volatile std::sig_atomic_t gDeferredSignal = 0;
+extern "C" void deferSignal(int signal) { gDeferredSignal = signal; }
+
+// While it lives, a termination signal (whichever thread gets it) is only noted; when it
+// ends, the previous handlers come back and a noted signal is raised again, with the effect
+// it would have had. Not for concurrent use: images are written one at a time.
+class TerminationSignalsDeferred {
+public:
+  TerminationSignalsDeferred() {
+    struct sigaction defer {};
+    defer.sa_handler = deferSignal;
+    defer.sa_flags = SA_RESTART;
+    sigemptyset(&defer.sa_mask);
+    for (size_t i = 0; i < kTerminationSignals.size(); ++i) sigaction(kTerminationSignals[i], &defer, &previous_[i]);
+  }
+  ~TerminationSignalsDeferred() {
+    for (size_t i = 0; i < kTerminationSignals.size(); ++i) sigaction(kTerminationSignals[i], &previous_[i], nullptr);
+    if (const int signal = gDeferredSignal) {
+      gDeferredSignal = 0;
+      std::raise(signal);
+    }
+  }
+  TerminationSignalsDeferred(const TerminationSignalsDeferred&) = delete;
+  TerminationSignalsDeferred& operator=(const TerminationSignalsDeferred&) = delete;
+
+private:
+  std::array<struct sigaction, kTerminationSignals.size()> previous_{};
+};
+
 // Writes `bytes` to a uniquely named hidden file beside `path`, flushes it to disk and
 // renames it over `path`: rename is atomic within a directory, so readers (and a crash) see
-// either the old file or the complete new one, never a partial image.
+// either the old file or the complete new one, never a partial image. Interrupted (SIGINT,
+// SIGTERM), it finishes the write and the rename first, so no hidden file is left behind.
 void writeFileAtomically(const fs::path& path, const std::vector<unsigned char>& bytes) {
+  const TerminationSignalsDeferred deferred;  // declared first: ends after the temporary is gone
   static std::atomic<unsigned> counter{0};
   std::string tempName = ".";  // hidden; appended piecewise to dodge a GCC 12 -Wrestrict false positive
   tempName += path.filename().string();
@@ -176,6 +213,27 @@ std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& 
   return bytes;
 }
 
+// Pixels with a data window beyond kMaxImagePixels, or more than the file could hold at
+// any compression tinyexr reads (zlib's best is 1032:1), are refused before tinyexr
+// allocates them.
+void checkDeclaredPixels(const fs::path& path, const EXRHeader& header, size_t fileBytes) {
+  constexpr uint64_t kBestCompression = 2048;
+  const int64_t width = int64_t(header.data_window.max_x) - header.data_window.min_x + 1;
+  const int64_t height = int64_t(header.data_window.max_y) - header.data_window.min_y + 1;
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width <= 0 || height <= 0 || uint64_t(width) > kMaxImagePixels || uint64_t(height) > kMaxImagePixels ||
+      uint64_t(width * height) > kMaxImagePixels) {
+    failRead(path, "its data window of " + size + " pixels is empty or more than the " +
+                       std::to_string(kMaxImagePixels) + " wavepath reads; use a smaller image");
+  }
+  uint64_t bytesPerPixel = 0;
+  for (int c = 0; c < header.num_channels; ++c) bytesPerPixel += header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF ? 2 : 4;
+  if (uint64_t(width * height) * bytesPerPixel > kBestCompression * fileBytes) {
+    failRead(path, "it declares " + size + " pixels, more than its " + std::to_string(fileBytes) +
+                       " bytes can hold; the file is truncated or damaged");
+  }
+}
+
 int findChannel(const EXRHeader& header, const char* name) {
   for (int c = 0; c < header.num_channels; ++c)
     if (std::strcmp(header.channels[c].name, name) == 0) return c;
@@ -234,17 +292,22 @@ void writeImage(const fs::path& path, const RadianceImage& image, const DisplayS
 }
 
 RadianceImage readExr(const fs::path& path) {
+  // The largest scanline EXR of kMaxImagePixels: six float channels, uncompressed.
+  const std::vector<unsigned char> bytes =
+      readRegularFile(path, "cannot read EXR '" + path.string() + "'", 24 * kMaxImagePixels + (1u << 20),
+                      "an OpenEXR image");
   EXRVersion version;
-  if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS)
-    failRead(path, "missing, unreadable or not an OpenEXR file; check the path");
+  if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
+    failRead(path, "not an OpenEXR file; check the path");
   if (version.multipart || version.non_image || version.tiled)
     failRead(path,
              "multi-part, deep and tiled EXR files are not supported; save it as a single-part scanline EXR");
 
   ExrHandles exr;
   const char* err = nullptr;
-  if (ParseEXRHeaderFromFile(&exr.header, &version, path.c_str(), &err) != TINYEXR_SUCCESS)
+  if (ParseEXRHeaderFromMemory(&exr.header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS)
     failRead(path, takeExrMessage(err) + "; check that the file is intact");
+  checkDeclaredPixels(path, exr.header, bytes.size());
   const char* names[] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
   int index[6];
   for (int c = 0; c < 6; ++c) index[c] = findChannel(exr.header, names[c]);
@@ -260,8 +323,12 @@ RadianceImage readExr(const fs::path& path) {
       failRead(path,
                std::string("channel ") + names[c] + " holds integers, not radiance; save it as half or float");
   }
-  if (LoadEXRImageFromFile(&exr.image, &exr.header, path.c_str(), &err) != TINYEXR_SUCCESS)
+  if (LoadEXRImageFromMemory(&exr.image, &exr.header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
+    // tinyexr (1.0.1, DecodeEXRImage) has freed what it allocated but left the pointers:
+    // forget them, or ~ExrHandles would free them again.
+    InitEXRImage(&exr.image);
     failRead(path, takeExrMessage(err) + "; check that the file is intact");
+  }
 
   RadianceImage result;
   result.width = uint32_t(exr.image.width);

@@ -3,18 +3,19 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <memory>
 #include <limits>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <stb_image.h>
+#include <sys/stat.h>
 
 #include "core/error.h"
+#include "core/file_read.h"
 #include "core/log.h"
 #include "scene/gltf_context.h"
 
@@ -32,33 +33,35 @@ constexpr int kMaxJsonDepth = 256;
   throw Error(file.string() + ": " + message);
 }
 
-std::vector<unsigned char> readWholeFile(const fs::path& file) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(file, ec);
-  if (status.type() == fs::file_type::not_found) fileError(file, "no such file; check the path");
-  if (ec) fileError(file, "cannot be accessed (" + ec.message() + "); check the path and its permissions");
-  if (fs::is_directory(status)) {
-    fileError(file, "is a directory, not a glTF file; give the path of a .gltf or .glb file");
-  }
-  if (!fs::is_regular_file(status)) {
-    fileError(file, "is not a regular file; give the path of a .gltf or .glb file");
-  }
+// tinygltf takes lengths as unsigned int, so no file it reads may hold more.
+constexpr uint64_t kMaxFileBytes = std::numeric_limits<unsigned int>::max();
 
-  const uintmax_t size = fs::file_size(file, ec);
-  if (ec) fileError(file, "cannot be accessed (" + ec.message() + "); check the path and its permissions");
-  if (size == 0) fileError(file, "is empty; re-export the scene");
-  // tinygltf takes the length as an unsigned int.
-  if (size > std::numeric_limits<unsigned int>::max()) {
-    fileError(file, "is larger than 4 GiB, which the glTF loader cannot read; split the scene");
+// tinygltf's file access, for the buffers and images a .gltf names by URI: through
+// readRegularFile, so a URI naming a directory, FIFO or device, or a file too large, is
+// refused before anything is allocated or anything blocks. The first refusal is kept to be
+// said as wavepath says errors (tinygltf would only warn about an image).
+struct UriReads {
+  std::string refusal;
+};
+
+bool uriExists(const std::string& path, void*) {
+  struct stat status {};
+  return ::stat(path.c_str(), &status) == 0;
+}
+
+bool readUri(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  try {
+    std::string label = "'";  // appended piecewise to dodge a GCC 12 -Wrestrict false positive
+    label += oneLine(path);
+    label += "'";
+    *out = readRegularFile(path, label, kMaxFileBytes, "a buffer or image file (a URI must name a regular file)");
+    return true;
+  } catch (const Error& e) {
+    auto* reads = static_cast<UriReads*>(user);
+    if (reads->refusal.empty()) reads->refusal = e.what();
+    *err += e.what();
+    return false;
   }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fileError(file, std::string("cannot be opened (") + std::strerror(errno) + "); check its permissions");
-  std::vector<unsigned char> bytes(static_cast<size_t>(size));
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (in.gcount() != static_cast<std::streamsize>(bytes.size())) {
-    fileError(file, "could not be read to the end; check that nothing else is writing it");
-  }
-  return bytes;
 }
 
 bool hasBinaryMagic(const std::vector<unsigned char>& bytes) {
@@ -138,7 +141,8 @@ void warnEachLine(const fs::path& file, const std::string& text) {
 }  // namespace
 
 tinygltf::Model parseGltfFile(const fs::path& file) {
-  const std::vector<unsigned char> bytes = readWholeFile(file);
+  const std::vector<unsigned char> bytes =
+      readRegularFile(file, file.string(), kMaxFileBytes, "a .gltf or .glb file");
   const bool binary = hasBinaryMagic(bytes);
   if (!binary && hasGlbExtension(file)) {
     fileError(file, "is not a binary glTF file (it does not start with \"glTF\"); re-export it");
@@ -150,15 +154,24 @@ tinygltf::Model parseGltfFile(const fs::path& file) {
 
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(decodeImage, nullptr);
+  UriReads uriReads;
+  parser.SetFsCallbacks({uriExists, tinygltf::ExpandFilePath, readUri, tinygltf::WriteWholeFile, &uriReads});
   tinygltf::Model model;
   std::string err;
   std::string warnings;
   const std::string baseDir = file.parent_path().string();
   const auto size = static_cast<unsigned int>(bytes.size());
-  const bool ok =
-      binary ? parser.LoadBinaryFromMemory(&model, &err, &warnings, bytes.data(), size, baseDir)
-             : parser.LoadASCIIFromString(&model, &err, &warnings, reinterpret_cast<const char*>(bytes.data()),
-                                          size, baseDir);
+  bool ok = false;
+  try {
+    ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warnings, bytes.data(), size, baseDir)
+                : parser.LoadASCIIFromString(&model, &err, &warnings, reinterpret_cast<const char*>(bytes.data()),
+                                             size, baseDir);
+  } catch (const std::out_of_range&) {
+    // tinygltf reads the first byte of a buffer or image with .at(0) before checking that
+    // there is one (a .glb buffer of byteLength 0).
+    fileError(file, "is not a valid glTF 2.0 file: a buffer or image in it is empty (byteLength 0?); re-export it");
+  }
+  if (!uriReads.refusal.empty()) fileError(file, uriReads.refusal);
   if (!ok) {
     // tinygltf sometimes reports a failure only in its warnings.
     const std::string reason = oneLine(err.empty() ? warnings : err);
