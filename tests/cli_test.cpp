@@ -29,20 +29,6 @@ Outcome renderExpectingFailure(const std::filesystem::path& scene, std::vector<s
   return o;
 }
 
-// One line on stderr, "wavepath: error: ...", containing `phrase`; exit code `code`.
-void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code = 1) {
-  EXPECT_EQ(r.exitCode, code) << r.err;
-  std::string lastLine = r.err;
-  while (!lastLine.empty() && lastLine.back() == '\n') {
-    lastLine.pop_back();
-  }
-  size_t nl = lastLine.rfind('\n');
-  lastLine = nl == std::string::npos ? lastLine : lastLine.substr(nl + 1);
-  EXPECT_EQ(lastLine.rfind("wavepath: error: ", 0), 0u) << r.err;
-  EXPECT_NE(lastLine.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line: " << r.err;
-}
-
 void writeText(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 // One triangle (3 positions, 3 uint16 indices) as a glTF JSON text with the given pieces

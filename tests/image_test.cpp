@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <stb_image.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -200,6 +201,33 @@ TEST_F(ImageIoTest, FailedWriteKeepsOldFileAndRemovesTemporary) {
   EXPECT_TRUE(threw);
   EXPECT_EQ(readFile(path), before);
   EXPECT_EQ(listing(), std::vector<std::string>{"frame.exr"});
+}
+
+// Ctrl-C or kill while the image is being written used to leave a hidden .NAME.tmpPID_N of
+// several MB. The write now finishes (and renames) before the signal takes effect.
+TEST_F(ImageIoTest, ASignalDuringTheWriteLeavesNoTemporaryFile) {
+  const fs::path path = dir / "big.exr";
+  const wp::RadianceImage image = makeImage(1024, 1024, true);  // ~24 MB of barely compressible floats
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    wp::writeImage(path, image);
+    ::_exit(0);
+  }
+  // Signal the writer as soon as its temporary file exists, that is, mid-write.
+  bool sawTemporary = false;
+  int status = 0;
+  while (!sawTemporary && ::waitpid(child, &status, WNOHANG) == 0) {
+    for (const std::string& name : listing()) sawTemporary = sawTemporary || name.rfind(".big.exr.tmp", 0) == 0;
+    if (sawTemporary) {
+      ::kill(child, SIGINT);
+      ::waitpid(child, &status, 0);
+    }
+  }
+  ASSERT_TRUE(sawTemporary) << "the write ended before it was seen; write a larger image";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "the signal must still end the process";
+  EXPECT_EQ(listing(), std::vector<std::string>{"big.exr"});
+  EXPECT_EQ(wp::readExr(path).width, 1024u);
 }
 
 TEST_F(ImageIoTest, ReadingMissingOrNonExrFileThrows) {

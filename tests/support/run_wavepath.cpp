@@ -4,6 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -47,6 +50,19 @@ RunResult runWavepath(const std::vector<std::string>& args, const std::vector<st
   result.out = slurp(dir / "out");
   result.err = slurp(dir / "err");
   return result;
+}
+
+void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code) {
+  EXPECT_EQ(r.exitCode, code) << r.err;
+  std::string lastLine = r.err;
+  while (!lastLine.empty() && lastLine.back() == '\n') {
+    lastLine.pop_back();
+  }
+  size_t nl = lastLine.rfind('\n');
+  lastLine = nl == std::string::npos ? lastLine : lastLine.substr(nl + 1);
+  EXPECT_EQ(lastLine.rfind("wavepath: error: ", 0), 0u) << r.err;
+  EXPECT_NE(lastLine.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line: " << r.err;
 }
 
 std::filesystem::path scratchDirectory(const std::string& name) {
