@@ -184,12 +184,15 @@ WP_STRUCT_END(GpuEnvironment)
 WP_STRUCT(RenderParams)
   ThinLens camera;      // optics and placement of the camera (thin_lens.h)
   GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
-  uvec4 image;          // x: width, y: height, z: pixel count, w: seed
+  uvec4 image;          // x: width, y: height, z: pixels in the tile (tile.z * tile.w), w: seed
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
                         // w: number of lights
   uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
   uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
                         // z: WP_LIGHT_SELECTION_*, w: unused
+  uvec4 tile;           // the pixels traced and accumulated: x, y: the tile's top-left pixel
+                        // in the image, z, w: its width and height (the whole image unless it
+                        // is rendered in parts, as one that does not fit the device is)
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
@@ -231,9 +234,9 @@ WP_STRUCT_END(QueueCounters)
 #define WP_COUNTER_WORDS 16u
 
 // Per-dispatch constants (Vulkan push constants, OpenCL kernel arguments). A pass traces
-// `pathCount` paths: path slot i is pixel (firstPixel + i) % pixels of sample
-// firstSample + (firstPixel + i) / pixels, so a pass may span several samples of a small
-// image while every slot of one pixel is accumulated in sample order.
+// `pathCount` paths: path slot i is pixel (firstPixel + i) % pixels of the tile (row-major)
+// of sample firstSample + (firstPixel + i) / pixels, so a pass may span several samples of
+// a small image while every slot of one pixel is accumulated in sample order.
 WP_STRUCT(PassConstants)
   uvec4 pass;  // x: firstPixel, y: firstSample, z: pathCount, w: bounce
 WP_STRUCT_END(PassConstants)

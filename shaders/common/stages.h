@@ -52,8 +52,12 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint linear = pc.pass.x + slot;
   uint pixel = linear % pixels;
   uint sampleIndex = pc.pass.y + linear / pixels;
+  // The pixel's place in the whole image, so that an image rendered in tiles is the same.
+  uint width = params.image.x;
+  uint x = params.tile.x + pixel % params.tile.z;
+  uint y = params.tile.y + pixel / params.tile.z;
 
-  uint rng = rngSeed(pixel, sampleIndex, params.image.w);
+  uint rng = rngSeed(y * width + x, sampleIndex, params.image.w);
   float time = rngTime(rng);
   rng = rngNext(rng);
   float jx = rngFloat(rng);
@@ -63,8 +67,7 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   float lensU = rngFloat(rng);
   rng = rngNext(rng);
   float lensV = rngFloat(rng);
-  uint width = params.image.x;
-  vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
+  vec2 film = make_vec2(toFloat(x) + jx, toFloat(y) + jy);
   CameraRay camera = sampleThinLensRay(params.camera, film, width, params.image.y, make_vec2(lensU, lensV));
 
   PathRay ray;

@@ -81,6 +81,11 @@ void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& b
   const GpuScene& gpuScene = uploader.gpuSceneOf(scene);
   applyCameraFlags(o.camera, scene.camera, gpuScene);
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
+  if (renderer.tileCount() > 1) {
+    note("the " + std::to_string(o.settings.width) + "x" + std::to_string(o.settings.height) + " image is rendered in " +
+         std::to_string(renderer.tileCount()) + " tiles, one after another: its accumulation does not fit " +
+         backend.deviceName() + " at once");
+  }
   ProgressBar bar;
   RenderStats stats = renderer.render([&](double fraction) { bar.update(fraction); });
   bar.finish();

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "bvh/gpu_scene.h"
+#include "core/error.h"
 #include "render/camera_lens.h"
 #include "scene/scene.h"
 #include "shaders/common/bsdf_models.h"
@@ -35,7 +36,20 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
                                                                                   : WP_LIGHT_SELECTION_POWER;
   p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection, 0u);
+  p.tile = glm::uvec4(0u, 0u, settings.width, settings.height);
   return p;
+}
+
+std::vector<Tile> splitIntoTiles(uint32_t width, uint32_t height, uint64_t maxPixels) {
+  const uint64_t rowsPerTile = std::clamp<uint64_t>(maxPixels / width, 1, height);
+  const uint64_t count = (height + rowsPerTile - 1) / rowsPerTile;
+  std::vector<Tile> tiles;
+  for (uint64_t i = 0; i < count; ++i) {
+    const auto top = uint32_t(height * i / count);
+    const auto bottom = uint32_t(height * (i + 1) / count);
+    tiles.push_back({0, top, width, bottom - top});
+  }
+  return tiles;
 }
 
 WavefrontRenderer::WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene,
@@ -49,7 +63,19 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   settings_ = settings;
   settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
+  tiles_ = splitIntoTiles(settings_.width, settings_.height, backend_.maxAccumulationPixels(settings_.maxPaths));
+  image_ = {};
+  configureTile(0);
+}
+
+void WavefrontRenderer::configureTile(size_t index) {
+  const Tile& tile = tiles_[index];
+  const uint32_t pixels = tile.width * tile.height;
+  params_.tile = glm::uvec4(tile.x, tile.y, tile.width, tile.height);
+  params_.image.z = pixels;
+  params_.counts.w = uint32_t(std::clamp<uint64_t>(uint64_t(pixels) * settings_.samplesPerPixel, 1, settings_.maxPaths));
   backend_.configure(params_);
+  tile_ = index;
   pathsDone_ = 0;
 }
 
@@ -99,12 +125,32 @@ void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats
 RenderStats WavefrontRenderer::render(const std::function<void(double)>& progress) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t total = uint64_t(params_.image.z) * settings_.samplesPerPixel;
-  const uint64_t end = pathsDone_ + total;
-  while (pathsDone_ < end) {
-    runNextPass(end, params_.counts.w, stats);
-    if (progress) {
-      progress(double(stats.samples) / double(total));
+  const uint64_t total = uint64_t(settings_.width) * settings_.height * settings_.samplesPerPixel;
+  const bool tiled = tiles_.size() > 1;
+  if (tiled) {
+    image_.width = settings_.width;
+    image_.height = settings_.height;
+    image_.mean.resize(size_t(image_.width) * image_.height);
+    image_.variance.resize(image_.mean.size());
+  }
+  for (size_t t = tiled ? 0 : tile_; t < tiles_.size(); ++t) {
+    if (t != tile_ || tiled) configureTile(t);
+    const uint64_t end = pathsDone_ + uint64_t(params_.image.z) * settings_.samplesPerPixel;
+    while (pathsDone_ < end) {
+      runNextPass(end, params_.counts.w, stats);
+      if (progress) {
+        progress(double(stats.samples) / double(total));
+      }
+    }
+    if (tiled) {
+      const RadianceImage part = tileImage();
+      const Tile& tile = tiles_[t];
+      for (uint32_t row = 0; row < tile.height; ++row) {
+        const size_t from = size_t(row) * tile.width;
+        const size_t to = size_t(tile.y + row) * image_.width + tile.x;
+        std::copy_n(part.mean.begin() + from, tile.width, image_.mean.begin() + to);
+        std::copy_n(part.variance.begin() + from, tile.width, image_.variance.begin() + to);
+      }
     }
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -112,6 +158,11 @@ RenderStats WavefrontRenderer::render(const std::function<void(double)>& progres
 }
 
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
+  if (tiles_.size() > 1) {
+    throw Error("a " + std::to_string(settings_.width) + "x" + std::to_string(settings_.height) +
+                " image does not fit " + backend_.deviceName() + " at once, and a progressive render cannot be split "
+                "into tiles; make the window smaller");
+  }
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
@@ -142,11 +193,13 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
 
 uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.image.z); }
 
-RadianceImage WavefrontRenderer::image() {
+RadianceImage WavefrontRenderer::image() { return tiles_.size() > 1 ? std::move(image_) : tileImage(); }
+
+RadianceImage WavefrontRenderer::tileImage() {
   Accumulation acc = backend_.readAccumulation();
   RadianceImage image;
-  image.width = settings_.width;
-  image.height = settings_.height;
+  image.width = params_.tile.z;
+  image.height = params_.tile.w;
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
