@@ -11,12 +11,12 @@
 #include <string_view>
 #include <vector>
 
-#include <stb_image.h>
 #include <sys/stat.h>
 
 #include "core/error.h"
 #include "core/file_read.h"
 #include "core/log.h"
+#include "image/texture_decoder.h"
 #include "scene/gltf_context.h"
 
 namespace wp::gltf {
@@ -105,26 +105,23 @@ bool hasGlbExtension(const fs::path& file) {
 }
 
 // Decodes every image (file, data URI or .glb buffer view alike: tinygltf hands over the
-// bytes) into RGBA8 with stb_image; one that does not decode fails the load, naming it.
+// bytes) into RGBA8; one that does not decode fails the load, naming it.
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                  const unsigned char* bytes, int size, void*) {
-  int width = 0;
-  int height = 0;
-  int channels = 0;
-  std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> pixels(
-      stbi_load_from_memory(bytes, size, &width, &height, &channels, 4), &stbi_image_free);
-  if (!pixels) {
+  try {
+    Rgba8Image decoded = decodePngOrJpeg(bytes, size_t(std::max(size, 0)));
+    image->width = int(decoded.width);
+    image->height = int(decoded.height);
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(decoded.rgba);
+    return true;
+  } catch (const Error& e) {
     *err += "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'") +
-            " cannot be decoded (" + stbi_failure_reason() + "); use PNG or JPEG";
+            " cannot be decoded (" + e.what() + "); use PNG or JPEG";
     return false;
   }
-  image->width = width;
-  image->height = height;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image->image.assign(pixels.get(), pixels.get() + size_t(width) * size_t(height) * 4);
-  return true;
 }
 
 void warnEachLine(const fs::path& file, const std::string& text) {
