@@ -323,9 +323,12 @@ RadianceImage readExr(const fs::path& path) {
       failRead(path,
                std::string("channel ") + names[c] + " holds integers, not radiance; save it as half or float");
   }
+  // tinyexr (1.0.1) sets the image's channel count only once decoding succeeds, but on a
+  // failure frees the image by it (DecodeEXRImage: FreeEXRImage): set beforehand, every plane
+  // is freed, not only the array of them.
+  exr.image.num_channels = exr.header.num_channels;
   if (LoadEXRImageFromMemory(&exr.image, &exr.header, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) {
-    // tinyexr (1.0.1, DecodeEXRImage) has freed what it allocated but left the pointers:
-    // forget them, or ~ExrHandles would free them again.
+    // Freed but still pointed at: forget the pointers, or ~ExrHandles would free them again.
     InitEXRImage(&exr.image);
     failRead(path, takeExrMessage(err) + "; check that the file is intact");
   }

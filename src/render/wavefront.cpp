@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
@@ -193,7 +194,19 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
 
 uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.image.z); }
 
-RadianceImage WavefrontRenderer::image() { return tiles_.size() > 1 ? std::move(image_) : tileImage(); }
+RadianceImage WavefrontRenderer::image() {
+  RadianceImage image = tiles_.size() > 1 ? std::move(image_) : tileImage();
+  // What a scene may hold is bounded (radiance_limit.h, the loader's checks) so that no sum
+  // overflows: a pixel that is not finite is a bug, said rather than written to a file.
+  for (size_t i = 0; i < image.mean.size(); ++i) {
+    const glm::vec3 both = image.mean[i] + image.variance[i];
+    if (!std::isfinite(both.x) || !std::isfinite(both.y) || !std::isfinite(both.z)) {
+      throw std::logic_error("the render produced a pixel that is not a finite number, (" +
+                             std::to_string(i % image.width) + ", " + std::to_string(i / image.width) + ")");
+    }
+  }
+  return image;
+}
 
 RadianceImage WavefrontRenderer::tileImage() {
   Accumulation acc = backend_.readAccumulation();
