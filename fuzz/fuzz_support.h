@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <vector>
 
 namespace wp {
 struct Scene;
@@ -22,6 +23,10 @@ std::filesystem::path writeInput(const char* name, const uint8_t* data, size_t s
 // data, materials, camera, sky, and the packed GPU arrays.
 void checkFinite(const Scene& scene, const GpuScene& gpuScene);
 void checkFinite(const EnvironmentMap& sky);
+
+// A .glb of one quad with TEXCOORD_0 whose material uses `image` (any bytes, declared PNG) as
+// its base colour, emissive and normal texture.
+std::vector<uint8_t> texturedQuadGlb(const uint8_t* image, size_t imageSize);
 
 // Loads the scene in `file` as `wavepath render` does, poses it at 0.5 s when animated, packs
 // it for the GPU and checks the result. A wp::Error (bad input, said in one line) is the
