@@ -51,6 +51,10 @@ void checkRenderOptions(const wp::RenderOptions& o) {
   checkNumber(o.skyRotationDegrees, "--sky-rotation");
   checkNumber(o.time, "--time");
   checkNumber(o.fps, "--fps");
+  checkNumber(o.checkpoint.everySeconds, "--checkpoint-every");
+  if (o.skyColor) {
+    for (int c = 0; c < 3; ++c) checkNumber((*o.skyColor)[c], "--sky-color");
+  }
   const wp::CameraFlags& f = o.camera;
   checkNumber(f.fStop, "--fstop");
   checkNumber(f.focusDistance, "--focus-distance");

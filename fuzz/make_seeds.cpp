@@ -155,6 +155,10 @@ void flagSeeds(const fs::path& out) {
       {"render", "scene.gltf", "--light-selection", "solid-angle", "--rr-start", "2", "--seed", "7", "--max-paths",
        "4096", "--widen-roughness", "--fixed-lobe-choice"},
       {"view", "scene.gltf", "--frame-budget", "16", "--frames", "3", "--screenshot", "a.png", "--play", "--loop"},
+      {"render", "scene.gltf", "--samples", "0..15", "--region", "0,0,32,16", "--checkpoint", "c.ckpt",
+       "--checkpoint-every", "30", "--resume"},
+      {"render", "scene.gltf", "--sky-color", "0.1,0.2,0.3", "--camera", "Camera", "--scene", "0", "--sky", "none"},
+      {"merge", "a.exr", "b.exr", "-o", "out.exr"},
       {"devices"},
       {"render", "--help"},
   };

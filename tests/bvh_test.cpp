@@ -634,7 +634,7 @@ TEST(PackScene, LightTableIsPowerProportionalWithAnExactAliasTable) {
     const wp::gpu::GpuLight& l = g.lights[i];
     ASSERT_TRUE(std::isfinite(l.v0.w) && l.v0.w > 0.0f);
     EXPECT_NEAR(l.v0.w, 0.5f * glm::length(glm::cross(glm::vec3(l.edge1), glm::vec3(l.edge2))), 1e-5f * l.v0.w);
-    power[i] = luminance(glm::vec3(l.emission)) * l.v0.w * (l.info.y ? 2.0 : 1.0);
+    power[i] = luminance(glm::vec3(l.emission)) * l.v0.w * ((l.info.y & WP_LIGHT_DOUBLE_SIDED) ? 2.0 : 1.0);
     EXPECT_NEAR(l.emission.w, luminance(glm::vec3(l.emission)), 1e-6f * l.emission.w);  // untextured: the factor's
     EXPECT_EQ(l.info.w, WP_INVALID);
     powerSum += power[i];
@@ -674,7 +674,7 @@ TEST(PackScene, LightTableIsPowerProportionalWithAnExactAliasTable) {
       glm::vec3 v0 = glm::vec3(toWorld * glm::vec4(glm::vec3(tri.v0), 1.0f));
       EXPECT_NEAR(glm::length(v0 - glm::vec3(l.v0)), 0.0f, 1e-4f);
       EXPECT_EQ(glm::vec3(l.emission), glm::vec3(g.materials[tri.info.x].emission));
-      EXPECT_EQ(l.info.y, g.materials[tri.info.x].emission.w > 0.5f ? 1u : 0u);
+      EXPECT_EQ(l.info.y, g.materials[tri.info.x].emission.w > 0.5f ? WP_LIGHT_DOUBLE_SIDED : WP_LIGHT_TRIANGLE);
       EXPECT_EQ(l.info.z, t);  // its shading record
       ++checked;
     }

@@ -32,35 +32,44 @@ TEST(OpenClBuffer, ASourceSmallerThanThePlaceholderIsCopiedAndPaddedWithZeros) {
   EXPECT_EQ(back, (std::array<float, 4>{0.25f, 0.5f, 0.0f, 0.0f}));
 }
 
-TEST(Tiles, CoverTheImageInEvenBandsOfWholeRowsWithinTheLimit) {
-  for (const auto& [width, height, maxPixels] : std::vector<std::array<uint64_t, 3>>{
-           {64, 48, 512}, {64, 48, 1u << 20}, {7, 5, 7}, {7, 5, 20}, {100, 3, 1}, {8192, 8192, 4194304}}) {
-    SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height) + " in " + std::to_string(maxPixels));
-    const std::vector<Tile> tiles = splitIntoTiles(uint32_t(width), uint32_t(height), maxPixels);
-    const uint64_t rowsAllowed = std::clamp<uint64_t>(maxPixels / width, 1, height);
-    ASSERT_EQ(tiles.size(), (height + rowsAllowed - 1) / rowsAllowed);  // as few as the limit allows
-    uint32_t nextRow = 0, lowest = UINT32_MAX, highest = 0;
-    for (const Tile& tile : tiles) {
-      EXPECT_EQ(tile.x, 0u);
-      EXPECT_EQ(tile.width, width);
-      EXPECT_EQ(tile.y, nextRow);
-      EXPECT_GE(tile.height, 1u);
-      EXPECT_LE(tile.height, rowsAllowed);
-      lowest = std::min(lowest, tile.height);
-      highest = std::max(highest, tile.height);
-      nextRow += tile.height;
+TEST(Tiles, CoverTheRegionInEvenBandsOfWholeRowsWithinTheLimit) {
+  for (const auto& [region, maxPixels] : std::vector<std::pair<PixelRegion, uint64_t>>{
+           {{0, 0, 64, 48}, 512},
+           {{0, 0, 64, 48}, 1u << 20},
+           {{0, 0, 7, 5}, 7},
+           {{0, 0, 7, 5}, 20},
+           {{0, 0, 100, 3}, 1},
+           {{0, 0, 8192, 8192}, 4194304},
+           {{10, 20, 30, 41}, 45}}) {
+    SCOPED_TRACE(std::to_string(region.width()) + "x" + std::to_string(region.height()) + " in " +
+                 std::to_string(maxPixels));
+    const std::vector<PixelRegion> tiles = splitIntoTiles(region, maxPixels);
+    const uint64_t rowsAllowed = std::clamp<uint64_t>(maxPixels / region.width(), 1, region.height());
+    ASSERT_EQ(tiles.size(), (region.height() + rowsAllowed - 1) / rowsAllowed);  // as few as the limit allows
+    uint32_t nextRow = region.y0, lowest = UINT32_MAX, highest = 0;
+    for (const PixelRegion& tile : tiles) {
+      EXPECT_EQ(tile.x0, region.x0);
+      EXPECT_EQ(tile.x1, region.x1);
+      EXPECT_EQ(tile.y0, nextRow);
+      EXPECT_GE(tile.height(), 1u);
+      EXPECT_LE(tile.height(), rowsAllowed);
+      lowest = std::min(lowest, tile.height());
+      highest = std::max(highest, tile.height());
+      nextRow = tile.y1;
     }
-    EXPECT_EQ(nextRow, height);
+    EXPECT_EQ(nextRow, region.y1);
     EXPECT_LE(highest - lowest, 1u);  // even
   }
 }
 
 class DeviceLimits : public ::testing::TestWithParam<const char*> {
 protected:
-  RunResult render(const fs::path& output, std::vector<std::string> env) const {
-    return runWavepath({"render", (sourceDirectory() / "assets" / "cornell-box.gltf").string(), "-o", output.string(),
-                        "--width", "64", "--height", "48", "--spp", "4", "--backend", GetParam()},
-                       env, 300);
+  RunResult render(const fs::path& output, std::vector<std::string> env, std::vector<std::string> extra = {}) const {
+    std::vector<std::string> args = {"render", (sourceDirectory() / "assets" / "cornell-box.gltf").string(),
+                                     "-o", output.string(), "--width", "64", "--height", "48", "--spp", "4",
+                                     "--backend", GetParam(), "--sky", "none"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return runWavepath(args, env, 300);
   }
   const fs::path dir = scratchDirectory("limits");
 };
@@ -89,6 +98,29 @@ TEST_P(DeviceLimits, ASceneArrayTooLargeForTheDeviceIsOneErrorLine) {
   expectOneErrorLine(r, "the scene's triangles: 2 KiB, more than the 1 KiB");
   EXPECT_NE(r.err.find("(WAVEPATH_MAX_BUFFER_BYTES); render a smaller scene"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "image.png"));
+}
+
+TEST_P(DeviceLimits, ARegionInTilesEqualsTheRegionInOne) {
+  // --region renders a crop (a part of a frame split over machines); split again into
+  // tiles, each pixel still gets the paths it gets in the whole image.
+  const std::vector<std::string> region = {"--region", "8,4,56,40"};
+  const RunResult whole = render(dir / "whole.exr", {}, region);
+  ASSERT_EQ(whole.exitCode, 0) << whole.err;
+  const RunResult tiled = render(dir / "tiled.exr", {"WAVEPATH_MAX_BUFFER_BYTES=8192"}, region);
+  ASSERT_EQ(tiled.exitCode, 0) << tiled.err;
+  EXPECT_NE(tiled.err.find("tiles"), std::string::npos) << tiled.err;
+  const RadianceImage a = readExr(dir / "whole.exr");
+  const RadianceImage b = readExr(dir / "tiled.exr");
+  ASSERT_EQ(a.mean.size(), size_t(48 * 36));
+  ASSERT_EQ(a.mean, b.mean);
+  ASSERT_EQ(a.variance, b.variance);
+}
+
+TEST_P(DeviceLimits, ACheckpointOfARenderInTilesIsRefused) {
+  const RunResult r = render(dir / "image.exr", {"WAVEPATH_MAX_BUFFER_BYTES=16384"},
+                             {"--checkpoint", (dir / "render.checkpoint").string()});
+  expectOneErrorLine(r, "tiles, which cannot be checkpointed");
+  EXPECT_FALSE(fs::exists(dir / "image.exr"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, DeviceLimits, ::testing::Values("vulkan", "opencl"));

@@ -85,13 +85,14 @@ const TriangleCase kTriangleCases[] = {
 
 gpu::GpuLight makeLight(const TriangleCase& c, float selectionProbability) {
   glm::dvec3 e1 = c.v1 - c.v0, e2 = c.v2 - c.v0;
-  gpu::GpuLight light;
+  gpu::GpuLight light{};
   light.v0 = glm::vec4(glm::vec3(c.v0), float(0.5 * glm::length(glm::cross(e1, e2))));
   light.edge1 = glm::vec4(glm::vec3(e1), selectionProbability);
   light.edge2 = glm::vec4(glm::vec3(e2), 1.0f);
   // w: the selection weight by solid angle, the luminance of an untextured light.
   light.emission = glm::vec4(1.0f, 2.0f, 3.0f, 0.2126f + 0.7152f * 2.0f + 0.0722f * 3.0f);
-  light.info = glm::uvec4(0u, c.doubleSided ? 1u : 0u, 0u, WP_INVALID);  // no emissive texture
+  light.info = glm::uvec4(0u, WP_LIGHT_TRIANGLE | (c.doubleSided ? WP_LIGHT_DOUBLE_SIDED : 0u), 0u,
+                          WP_INVALID);  // no emissive texture
   return light;
 }
 
@@ -312,7 +313,7 @@ TEST(SampleLight, MultipliesSelectionAndTriangleDensities) {
   for (int i = 0; i < 1000; ++i) {
     glm::vec3 u(random.next(), random.next(), random.next());
     gpu::LightSample s =
-        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_POWER, position, u);
+        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_POWER, position, 0.0f, u);
     const gpu::GpuLight& chosen = lights[gpu::selectLight(lights.data(), 3, u.x)];
     gpu::LightSample alone = gpu::sampleLightTriangle(nullptr, nullptr, nullptr, chosen, position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
@@ -347,25 +348,25 @@ TEST(SolidAngle, OctahedronFacesSumToTheSphere) {
 TEST(SampleLight, SolidAngleSelectionFollowsTheWeights) {
   std::vector<gpu::GpuLight> lights;
   for (int i = 0; i < 3; ++i) lights.push_back(makeLight(kTriangleCases[i], 0.0f));
-  lights[2].info.y = 1u;  // LargeAndClose, double-sided: lit from below as well
+  lights[2].info.y = WP_LIGHT_TRIANGLE | WP_LIGHT_DOUBLE_SIDED;  // LargeAndClose: lit from below as well
   glm::vec3 position(0.1f, 0.0f, 0.2f);
   std::vector<double> expected;
-  double sum = gpu::solidAngleWeightSum(lights.data(), 3, position);
+  double sum = gpu::solidAngleWeightSum(lights.data(), 3, position, 0.0f);
   const int kCount = 100000;
-  for (const gpu::GpuLight& light : lights) expected.push_back(kCount * gpu::solidAngleWeight(light, position) / sum);
+  for (const gpu::GpuLight& light : lights) expected.push_back(kCount * gpu::solidAngleWeight(light, position, 0.0f) / sum);
   EXPECT_EQ(expected[0], 0.0);  // "Facing" shows this point its back: cross(e1, e2) points away
   std::vector<double> observed(3, 0.0);
   TestRandom random(5);
   for (int i = 0; i < kCount; ++i) {
     glm::vec3 u(random.next(), random.next(), random.next());
-    gpu::LightChoice choice = gpu::selectLightBySolidAngle(lights.data(), 3, position, u.x);
+    gpu::LightChoice choice = gpu::selectLightBySolidAngle(lights.data(), 3, position, 0.0f, u.x);
     ASSERT_LT(choice.index, 3u);
     observed[choice.index] += 1.0;
     float probability = gpu::lightSelectionProbability(lights.data(), 3, WP_LIGHT_SELECTION_SOLID_ANGLE,
-                                                       lights[choice.index], position);
+                                                       lights[choice.index], position, 0.0f);
     ASSERT_FLOAT_EQ(choice.probability, probability);
     gpu::LightSample s =
-        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, u);
+        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, 0.0f, u);
     gpu::LightSample alone =
         gpu::sampleLightTriangle(nullptr, nullptr, nullptr, lights[choice.index], position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);

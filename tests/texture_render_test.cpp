@@ -236,9 +236,11 @@ std::filesystem::path writeLitQuad(Tilt tilt, bool texturedLamp, const std::file
   return dir / "lit.gltf";
 }
 
+// Lit by its lamp alone: the lamp's emission of 1 only glows by the default-lighting rule,
+// which would add a white sky, and a uniform sky hides most of a normal's tilt.
 ImageMean renderLitQuad(const std::string& backend, Tilt tilt) {
   std::filesystem::path scene = writeLitQuad(tilt, false, scratchDirectory("normal-map-" + std::to_string(int(tilt))));
-  return imageMean(renderExr(backend, scene, {"--width", "32", "--height", "32", "--spp", "64"}));
+  return imageMean(renderExr(backend, scene, {"--width", "32", "--height", "32", "--spp", "64", "--sky", "none"}));
 }
 
 class NormalMap : public ::testing::TestWithParam<std::string> {};
@@ -279,10 +281,11 @@ class EmissiveTexture : public ::testing::TestWithParam<std::string> {};
 // sampling alone and both: light samples see the texture where they land (without it they
 // would find twice the light BSDF samples find), and the MIS weights of lamp hits use the
 // light table that light sampling draws from. The lamp's untextured twin must light the
-// quad clearly more, or the comparison would not show the texture at all.
+// quad clearly more, or the comparison would not show the texture at all. The lamp alone
+// lights it (--sky none: its emission of 1 would otherwise only glow beside a white sky).
 TEST_P(EmissiveTexture, LightSamplesSeeTheTextureAsHitsDo) {
   std::filesystem::path dir = scratchDirectory("emissive-lamp");
-  std::vector<std::string> base = {"--width", "32", "--height", "32", "--spp", "256"};
+  std::vector<std::string> base = {"--width", "32", "--height", "32", "--spp", "256", "--sky", "none"};
   std::vector<ImageMean> means;
   std::vector<std::string> names;
   for (const char* mode : {"mis", "nee", "bsdf"}) {

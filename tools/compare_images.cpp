@@ -2,6 +2,8 @@
 // radiances, the relative RMSE, and, when the render carries a variance AOV, the per-pixel
 // z statistics. A reference of an integer multiple of the render's size is box-averaged
 // down first: averaging box-filtered pixels gives exactly the box-filtered larger pixel.
+// `wavepath-compare --downsample IN.exr SIZE OUT.exr` writes that box-averaged image (a
+// reference small enough to commit, for the tests).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -35,8 +37,20 @@ wp::RadianceImage downsample(const wp::RadianceImage& image, uint32_t width, uin
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 5 && std::string(argv[1]) == "--downsample") {
+    try {
+      wp::RadianceImage image = wp::readExr(argv[2]);
+      const uint32_t size = uint32_t(std::atoi(argv[3]));
+      wp::writeImage(argv[4], downsample(image, size, uint32_t(uint64_t(size) * image.height / image.width)));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "wavepath-compare: error: %s\n", e.what());
+      return 1;
+    }
+    return 0;
+  }
   if (argc < 3) {
     std::fprintf(stderr, "usage: wavepath-compare RENDER.exr REFERENCE.exr [--exclude-above L]\n"
+                         "       wavepath-compare --downsample IN.exr WIDTH OUT.exr\n"
                          "  --exclude-above L: leave out pixels whose reference luminance exceeds L (e.g. lights)\n");
     return 2;
   }

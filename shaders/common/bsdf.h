@@ -18,6 +18,7 @@ WP_FN SurfaceMaterial surfaceMaterialOf(GpuMaterial m) {
   s.roughness = m.surface.y;
   s.ior = m.surface.z;
   s.transmission = m.surface.w;
+  s.disneyDiffuse = m.info.x == WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
   return s;
 }
 

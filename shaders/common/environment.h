@@ -166,7 +166,7 @@ WP_FN LightSample sampleEnvironment(WP_ENV_BUFFERS GpuEnvironment env, vec2 u) {
   float du = min((u.x - c0) / (c1 - c0), 0.99999994f);
   vec2 uv = make_vec2((toFloat(column) + du) / toFloat(width), (toFloat(row) + dv) / toFloat(height));
   float sinTheta = sin(WP_PI * uv.y);
-  LightSample s;
+  LightSample s = noLightSample();
   s.direction = environmentDirection(env, uv);
   s.distance = WP_FLT_MAX;
   vec4 radiance = WP_ENV_RADIANCE(texel);

@@ -30,7 +30,7 @@ WP_FN float f0FromIor(float eta) {
 
 // The cosine-weighted hemispherical mean of Schlick's curve,
 // 2 * integral of F(mu) mu dmu = F0 + (1 - F0) / 21 (2 * B(2, 6) = 1 / 21).
-WP_FN float fresnelSchlickAverage(float f0) { return f0 + (1.0f - f0) * (1.0f / 21.0f); }
+WP_FN vec3 fresnelSchlickAverage(vec3 f0) { return f0 + (make_vec3(1.0f, 1.0f, 1.0f) - f0) * (1.0f / 21.0f); }
 
 // Exact unpolarized Fresnel reflectance of a dielectric interface (mean of the s and p
 // reflectances). cosThetaI in [0, 1] is the cosine on the side the light arrives from and

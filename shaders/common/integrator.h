@@ -173,7 +173,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
         GpuLight light = WP_LIGHT(s.light);
         float selection = (1.0f - params.sky.transform.z) *
                           lightSelectionProbability(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, light,
-                                                    xyz(ray.origin));
+                                                    xyz(ray.origin), time);
         weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
       }
     }
@@ -196,8 +196,11 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   Frame frame = makeFrame(shadingNormal);
   vec3 woLocal = frameToLocal(frame, wo);
 
+  // Light sampling, in every mode but BSDF-only; there it still reaches the punctual lights,
+  // which no BSDF sample can hit, and leaves the rest to BSDF sampling.
   float skyChoice = params.sky.transform.z;
-  if (mode != WP_MODE_BSDF && (lightCount > 0u || skyChoice > 0.0f)) {
+  uint punctualLights = params.shading.w;
+  if ((mode != WP_MODE_BSDF || punctualLights > 0u) && (lightCount > 0u || skyChoice > 0.0f)) {
     RngDraw3 lightDraw = rngFloat3(rng);
     rng = lightDraw.state;
     vec3 u = lightDraw.u;
@@ -209,9 +212,12 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       ls.pdf *= skyChoice;
     } else {
       float select = min((u.x - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position,
+      ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position, time,
                        make_vec3(select, u.y, u.z));
       ls.pdf *= 1.0f - skyChoice;
+    }
+    if (mode == WP_MODE_BSDF && !ls.isDelta) {
+      ls.pdf = 0.0f;
     }
     BsdfEval e = noEval();
     if (ls.pdf > 0.0f) {
@@ -222,7 +228,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
     }
     vec3 unshadowed = e.fCos * ls.radiance;
     if (maxComponent(unshadowed) > 0.0f) {
-      float weight = mode == WP_MODE_MIS ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
+      float weight = mode == WP_MODE_MIS && !ls.isDelta ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
       vec3 origin = offsetRayOrigin(s.position, s.normal, ls.direction);
       r.shadow.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
       r.shadow.direction = make_vec4(ls.direction.x, ls.direction.y, ls.direction.z,

@@ -15,7 +15,7 @@ WP_BEGIN
 // arguments. Read-only data is bound as uniform texel buffers (RGBA32UI): on lavapipe a
 // texel fetch is a SIMD gather while a storage-buffer load is a per-lane scalar loop, and
 // on GPUs it goes through the texture cache. Writes go through storage buffers.
-#define WP_BINDING_PARAMS 0         // RenderParams (uniform)
+#define WP_BINDING_PARAMS 0         // RenderParams (Vulkan: a read-only storage buffer, bindings.glsl)
 #define WP_BINDING_NODES 1          // BvhNode[] (texels): all bottom-level BVHs, then the top level
 #define WP_BINDING_TRIANGLES 2      // GpuTriangle[] (texels) in BVH leaf order
 #define WP_BINDING_INSTANCES 3      // GpuInstance[] (texels)
@@ -37,7 +37,11 @@ WP_BEGIN
 #define WP_BINDING_RAYS_READ 19     // the rays buffer again, as texels (Vulkan only)
 #define WP_BINDING_HITS_READ 20     // the hits buffer again, as texels (Vulkan only)
 #define WP_BINDING_SHADOW_RAYS_READ 21  // the shadow-ray buffer again, as texels (Vulkan only)
-#define WP_BINDING_COUNT 22u
+// float[] (texels): the BSDF's constant tables (energy_compensation.h), uploaded from the
+// header's own array. Vulkan only: OpenCL and C++ read that array as a constant, but
+// llvmpipe takes minutes to compile a shader that holds it.
+#define WP_BINDING_BSDF_TABLES 22
+#define WP_BINDING_COUNT 23u
 
 // Integrator modes (RenderParams.mode.y).
 #define WP_MODE_MIS 0u
@@ -142,6 +146,8 @@ WP_STRUCT_END(GpuPlane)
 // GpuMaterial.info.x: which BSDF the material has.
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
+#define WP_MATERIAL_GLTF_DISNEY_DIFFUSE 2u  // the mixture with the seed's Disney diffuse base
+                                            // (extras.wavepath.diffuse = "disney")
 
 // A surface material, 112 bytes.
 WP_STRUCT(GpuMaterial)
@@ -157,19 +163,35 @@ WP_STRUCT(GpuMaterial)
                       // yzw: unused
 WP_STRUCT_END(GpuMaterial)
 
-// Emissive triangle in world space, with its alias-table entry for power-proportional
-// selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else
-// take alias), 80 bytes.
+// GpuLight.info.y: what the light is, in the low bits, and its flags above them.
+#define WP_LIGHT_TRIANGLE 0u     // an emissive triangle (an area light)
+#define WP_LIGHT_POINT 1u        // KHR_lights_punctual: a point
+#define WP_LIGHT_SPOT 2u         // a point emitting into a cone
+#define WP_LIGHT_DIRECTIONAL 3u  // a distant light (a sun) from one direction
+#define WP_LIGHT_KIND_MASK 3u
+#define WP_LIGHT_DOUBLE_SIDED 4u  // a triangle that emits on both sides (else the front only,
+                                  // the side of cross(edge1, edge2))
+
+// One light of next event estimation, with its alias-table entry for power-proportional
+// selection (pick i = min(floor(u * n), n - 1), keep i if fract(u * n) < threshold, else take
+// alias): an emissive triangle in world space, or a glTF punctual light, whose position and
+// direction may move while the shutter is open. Read it through the accessors of lights.h.
+// 96 bytes.
 WP_STRUCT(GpuLight)
-  vec4 v0;        // xyz: vertex 0, w: area
-  vec4 edge1;     // xyz: v1 - v0, w: probability of selecting this light
-  vec4 edge2;     // xyz: v2 - v0, w: alias threshold in [0, 1]
-  vec4 emission;  // rgb: radiance (the material's factor), w: luminance of the mean emitted
-                  // radiance over the triangle (texture included), its selection weight
-  uvec4 info;     // x: alias index, y: 1 if it emits on both sides (else the front only,
-                  // the side of cross(edge1, edge2)), z: its GpuTriangleShading (the
-                  // vertices in the same order as v0, edge1, edge2), w: emissive texture
-                  // (WP_INVALID: none)
+  vec4 v0;        // triangle: xyz vertex 0, w area; punctual: xyz position at shutter open,
+                  // w cos of a spot's outer cone angle
+  vec4 edge1;     // triangle: xyz v1 - v0; punctual: xyz the unit direction it points (spot,
+                  // directional) at shutter open; w: probability of selecting this light
+  vec4 edge2;     // triangle: xyz v2 - v0; punctual: xyz position at shutter close;
+                  // w: alias threshold in [0, 1]
+  vec4 emission;  // rgb: radiance (triangle), radiant intensity in W/sr (point, spot) or
+                  // irradiance in W/m^2 (directional); w: luminance of the triangle's mean
+                  // emitted radiance (texture included), or of the intensity or irradiance
+  vec4 motion;    // punctual: xyz the direction at shutter close, w cos of a spot's inner
+                  // cone angle; unused by triangles
+  uvec4 info;     // x: alias index, y: WP_LIGHT_* kind | WP_LIGHT_DOUBLE_SIDED, z: the
+                  // triangle's GpuTriangleShading (its vertices in the order of v0, edge1,
+                  // edge2), w: its emissive texture (WP_INVALID: none)
 WP_STRUCT_END(GpuLight)
 
 // Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
@@ -180,19 +202,19 @@ WP_STRUCT(GpuEnvironment)
   uvec4 size;      // x: width, y: height (texels); z, w: unused
 WP_STRUCT_END(GpuEnvironment)
 
-// Per-frame settings, a uniform buffer (OpenCL: a constant argument).
+// Per-frame settings, a read-only storage buffer (OpenCL: a constant argument).
 WP_STRUCT(RenderParams)
   ThinLens camera;      // optics and placement of the camera (thin_lens.h)
   GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
-  uvec4 image;          // x: width, y: height, z: pixels in the tile (tile.z * tile.w), w: seed
+  uvec4 image;          // x: width, y: height, z: pixels traced (of region), w: seed
   uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
-                        // w: number of lights
+                        // w: number of lights (triangles and punctual)
   uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
   uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
-                        // z: WP_LIGHT_SELECTION_*, w: unused
-  uvec4 tile;           // the pixels traced and accumulated: x, y: the tile's top-left pixel
-                        // in the image, z, w: its width and height (the whole image unless it
-                        // is rendered in parts, as one that does not fit the device is)
+                        // z: WP_LIGHT_SELECTION_*, w: number of punctual (delta) lights
+  uvec4 region;         // the pixels traced (image.z of them, row-major): x, y: first column
+                        // and row, z: width, w: height (the whole image unless --region, or
+                        // a tile of it when it does not fit the device at once)
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
@@ -234,9 +256,9 @@ WP_STRUCT_END(QueueCounters)
 #define WP_COUNTER_WORDS 16u
 
 // Per-dispatch constants (Vulkan push constants, OpenCL kernel arguments). A pass traces
-// `pathCount` paths: path slot i is pixel (firstPixel + i) % pixels of the tile (row-major)
-// of sample firstSample + (firstPixel + i) / pixels, so a pass may span several samples of
-// a small image while every slot of one pixel is accumulated in sample order.
+// `pathCount` paths: path slot i is pixel (firstPixel + i) % pixels of sample
+// firstSample + (firstPixel + i) / pixels, so a pass may span several samples of a small
+// image while every slot of one pixel is accumulated in sample order.
 WP_STRUCT(PassConstants)
   uvec4 pass;  // x: firstPixel, y: firstSample, z: pathCount, w: bounce
 WP_STRUCT_END(PassConstants)

@@ -13,6 +13,7 @@ WP_STRUCT(SurfaceMaterial)
   float roughness;     // glTF perceptual roughness in [0, 1]; alpha = roughness^2
   float ior;           // n(inside) / n(outside), glTF default 1.5
   float transmission;  // in [0, 1]: weight of glass within the non-metal part
+  bool disneyDiffuse;  // plastic's base: the seed report's Disney diffuse instead of Lambert
 WP_STRUCT_END(SurfaceMaterial)
 
 // The mixture f = metallic f_metal + (1 - metallic) (transmission f_glass +
@@ -49,13 +50,13 @@ WP_FN BsdfEval evalMaterial(SurfaceMaterial m, vec3 wo, vec3 wi, uint flags) {
   float alpha = alphaFromRoughness(m.roughness);
   BsdfEval e = noEval();
   if (w.metal > 0.0f) {
-    e = addWeighted(e, evalMetal(m.baseColor, alpha, wo, wi), w.metal);
+    e = addWeighted(e, evalMetal(m.baseColor, m.roughness, wo, wi), w.metal);
   }
   if (w.glass > 0.0f) {
     e = addWeighted(e, evalGlass(m.baseColor, alpha, m.ior, flags, wo, wi), w.glass);
   }
   if (w.plastic > 0.0f) {
-    e = addWeighted(e, evalPlastic(m.baseColor, m.roughness, m.ior, flags, wo, wi), w.plastic);
+    e = addWeighted(e, evalPlastic(m.baseColor, m.roughness, m.ior, m.disneyDiffuse, flags, wo, wi), w.plastic);
   }
   return e;
 }
@@ -78,7 +79,7 @@ WP_FN MaterialSample sampleMaterial(SurfaceMaterial m, vec3 wo, vec3 u, uint fla
   float chosen;
   if (u.x < w.metal) {
     chosen = w.metal;
-    s = sampleMetal(m.baseColor, alpha, wo, make_vec2(u.y, u.z));
+    s = sampleMetal(m.baseColor, m.roughness, wo, make_vec3(rescaleUniform(u.x, w.metal), u.y, u.z));
   } else {
     // u.x >= metallic and x < 1, so each division below is by a positive number.
     float x = rescaleUniform(u.x - w.metal, 1.0f - w.metal);
@@ -88,7 +89,7 @@ WP_FN MaterialSample sampleMaterial(SurfaceMaterial m, vec3 wo, vec3 u, uint fla
       s = sampleGlass(m.baseColor, alpha, m.ior, flags, wo, make_vec3(rescaleUniform(x, transmission), u.y, u.z));
     } else {
       chosen = w.plastic;
-      s = samplePlastic(m.baseColor, m.roughness, m.ior, flags, wo,
+      s = samplePlastic(m.baseColor, m.roughness, m.ior, m.disneyDiffuse, flags, wo,
                         make_vec3(rescaleUniform(x - transmission, 1.0f - transmission), u.y, u.z));
     }
   }

@@ -49,12 +49,32 @@ WP_FN float ggxVisibility(float alpha, float cosO, float cosI) {
   return 0.5f / (lambdaO + lambdaI);
 }
 
-// A microfacet normal with density ggxD(alpha, m) * m.z over solid angle, by inverting
-// the CDF of cos(theta): tan^2(theta) = alpha^2 u / (1 - u), u in [0, 1).
-WP_FN vec3 sampleGgxNormal(float alpha, vec2 u) {
-  float tan2 = alpha * alpha * u.x / (1.0f - u.x);
-  float cosTheta = 1.0f / sqrt(1.0f + tan2);
-  return sphericalDirection(sqrt(tan2) * cosTheta, cosTheta, 2.0f * WP_PI * u.y);
+// Smith's masking G1 of the GGX distribution for a direction with cos(theta) = cosTheta > 0:
+// 1 / (1 + Lambda) = 2 cos / (cos + sqrt(alpha^2 + (1 - alpha^2) cos^2)).
+WP_FN float ggxG1(float alpha, float cosTheta) {
+  float a2 = alpha * alpha;
+  return 2.0f * cosTheta / (cosTheta + sqrt(a2 + (1.0f - a2) * cosTheta * cosTheta));
+}
+
+// A microfacet normal visible from `o` (o.z > 0), with density G1(o) max(0, o.m) D(m) / o.z
+// over solid angle (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"): the
+// hemisphere of a unit-roughness configuration stretched by alpha is sampled by its
+// projected area as seen from o. Reflections of o about such normals have weights
+// F G2 / G1(o), which stay near F where sampling D(m) cos(theta_m) gives peaks at grazing
+// angles.
+WP_FN vec3 sampleGgxVisibleNormal(float alpha, vec3 o, vec2 u) {
+  vec3 stretched = normalize(make_vec3(alpha * o.x, alpha * o.y, o.z));
+  float lengthSquared = stretched.x * stretched.x + stretched.y * stretched.y;
+  vec3 t1 = lengthSquared > 0.0f ? make_vec3(-stretched.y, stretched.x, 0.0f) / sqrt(lengthSquared)
+                                 : make_vec3(1.0f, 0.0f, 0.0f);
+  vec3 t2 = cross(stretched, t1);
+  float r = sqrt(u.x);
+  float phi = 2.0f * WP_PI * u.y;
+  float p1 = r * cos(phi);
+  float s = 0.5f * (1.0f + stretched.z);
+  float p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * r * sin(phi);
+  vec3 n = t1 * p1 + t2 * p2 + stretched * sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2));
+  return normalize(make_vec3(alpha * n.x, alpha * n.y, max(0.0f, n.z)));
 }
 
 // ---- Beckmann, Walter et al. 2007 ----

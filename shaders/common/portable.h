@@ -10,7 +10,8 @@
 // - no out/inout parameters: functions return structs;
 // - structs are declared with WP_STRUCT(Name) ... WP_STRUCT_END(Name);
 // - functions are declared WP_FN; code sits between WP_BEGIN and WP_END;
-// - no file-scope const variables (OpenCL wants __constant): use #define.
+// - no file-scope const variables (OpenCL wants __constant): use #define; a table of
+//   constants is WP_FLOAT_TABLE in C++ and OpenCL and a buffer in GLSL (energy_compensation.h);
 // WP_BUFFERS_AS_ARGUMENTS: C++ and OpenCL pass buffers to functions as pointers; GLSL reads
 // them as globals that the including stage declares. (OpenCL compilers define
 // __OPENCL_VERSION__; plain clang -x cl defines only __OPENCL_C_VERSION__.)

@@ -15,6 +15,9 @@ typedef uint4 uvec4;
 #define WP_FN
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;
+// A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END
+#define WP_FLOAT_TABLE(name, size) __constant float name[size] = {
+#define WP_FLOAT_TABLE_END };
 #define WP_GLOBAL_PTR(type) __global const type*
 
 #define make_vec2(x, y) ((float2)((x), (y)))

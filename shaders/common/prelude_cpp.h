@@ -26,6 +26,9 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_FN inline
 #define WP_STRUCT(name) struct name {
 #define WP_STRUCT_END(name) };
+// A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END
+#define WP_FLOAT_TABLE(name, size) inline constexpr float name[size] = {
+#define WP_FLOAT_TABLE_END };
 // Pointer to device-global memory in function parameters (GLSL reads buffers as globals).
 #define WP_GLOBAL_PTR(type) const type*
 

@@ -42,22 +42,27 @@ WP_FN QueueCounters advanceCounters(QueueCounters c, uint queue) {
   return c;
 }
 
+// The image pixel (row-major over the whole image) of pixel `regionPixel` of the region
+// traced (row-major over the region).
+WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
+  uint column = params.region.x + regionPixel % params.region.z;
+  uint row = params.region.y + regionPixel / params.region.z;
+  return row * params.image.x + column;
+}
+
 // The camera ray of path slot `slot` of the pass `pc`: slot i is pixel (firstPixel + i) %
-// pixels of sample firstSample + (firstPixel + i) / pixels (see PassConstants), through a
-// uniformly jittered point of that pixel (a box filter) and a point uniform on the lens
-// aperture, at a shutter time uniform in [0, 1), with the path's random stream seeded from
-// (pixel, sample, seed).
+// pixels of the region of sample firstSample + (firstPixel + i) / pixels (see
+// PassConstants), through a uniformly jittered point of that pixel (a box filter) and a
+// point uniform on the lens aperture, at a shutter time uniform in [0, 1), with the path's
+// random stream seeded from (image pixel, sample, seed): a pixel's paths are the same
+// whichever region or batch of samples traces them.
 WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint pixels = params.image.z;
   uint linear = pc.pass.x + slot;
-  uint pixel = linear % pixels;
+  uint pixel = imagePixel(params, linear % pixels);
   uint sampleIndex = pc.pass.y + linear / pixels;
-  // The pixel's place in the whole image, so that an image rendered in tiles is the same.
-  uint width = params.image.x;
-  uint x = params.tile.x + pixel % params.tile.z;
-  uint y = params.tile.y + pixel / params.tile.z;
 
-  uint rng = rngSeed(y * width + x, sampleIndex, params.image.w);
+  uint rng = rngSeed(pixel, sampleIndex, params.image.w);
   float time = rngTime(rng);
   rng = rngNext(rng);
   float jx = rngFloat(rng);
@@ -67,7 +72,8 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   float lensU = rngFloat(rng);
   rng = rngNext(rng);
   float lensV = rngFloat(rng);
-  vec2 film = make_vec2(toFloat(x) + jx, toFloat(y) + jy);
+  uint width = params.image.x;
+  vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
   CameraRay camera = sampleThinLensRay(params.camera, film, width, params.image.y, make_vec2(lensU, lensV));
 
   PathRay ray;

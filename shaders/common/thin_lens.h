@@ -17,7 +17,8 @@ WP_STRUCT(ThinLens)
   vec4 forward;   // xyz: unit optical axis; w: focus distance D > f, from the lens along it
   vec4 aperture;  // x: aperture radius f / (2 N), 0 for a pinhole; y: blade count, 0 for a
                   // circle, else >= 3; z: angle of the first polygon corner from `right`
-                  // towards `up`, radians; w: unused
+                  // towards `up`, radians; w: 1 for an orthographic camera (see
+                  // makeOrthographicLens), else 0
 WP_STRUCT_END(ThinLens)
 
 WP_STRUCT(CameraRay)
@@ -80,6 +81,17 @@ WP_FN ThinLens makeThinLens(vec3 position, vec3 forward, vec3 up, vec2 filmHalf,
   return lens;
 }
 
+// An orthographic camera: parallel rays along `forward` from a view rectangle 2 halfExtent
+// wide and high (scene units) centred on `position`. It keeps the thin lens's record, with
+// the view's half extents as the film's, a pinhole aperture and aperture.w = 1.
+WP_FN ThinLens makeOrthographicLens(vec3 position, vec3 forward, vec3 up, vec2 halfExtent) {
+  ThinLens lens = makeThinLens(position, forward, up, halfExtent, 1.0f, WP_FLT_MAX, WP_FLT_MAX);
+  lens.aperture = make_vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  return lens;
+}
+
+WP_FN bool isOrthographic(ThinLens lens) { return lens.aperture.w != 0.0f; }
+
 // The same lens with a regular polygonal aperture of `blades` (>= 3) straight blades,
 // inscribed in the circle of the round aperture, its first corner `rotation` radians from
 // the image's x axis towards its y axis. Out-of-focus highlights take its shape.
@@ -125,9 +137,14 @@ WP_FN CameraRay thinLensRay(ThinLens lens, vec2 film, uint width, uint height, v
   float d = lens.forward.w;
   float ndcX = 2.0f * film.x / toFloat(width) - 1.0f;
   float ndcY = 1.0f - 2.0f * film.y / toFloat(height);
+  CameraRay ray;
+  if (isOrthographic(lens)) {
+    ray.origin = position + right * (ndcX * lens.right.w) + up * (ndcY * lens.up.w);
+    ray.direction = forward;
+    return ray;
+  }
   vec3 chief = forward * imageDistance(f, d) + right * (ndcX * lens.right.w) + up * (ndcY * lens.up.w);
   vec3 offset = right * lensOffset.x + up * lensOffset.y;
-  CameraRay ray;
   ray.origin = position + offset;
   ray.direction = normalize(chief - offset * (f / (d - f)));
   return ray;

@@ -6,7 +6,11 @@
 layout(local_size_x = WP_WORKGROUP_SIZE) in;
 
 layout(push_constant) uniform Push { PassConstants pc; };
-layout(std140, binding = WP_BINDING_PARAMS) uniform Params { RenderParams params; };
+// A storage buffer, not a uniform buffer: lavapipe (Mesa 22.3) inlines uniform values into a
+// shader whose loops they bound (the lights, planes and aperture blades are counted in
+// RenderParams) by compiling it anew at every bind, and never frees the copies: a
+// 10,000-spp render grew by 100 MB (wavepath-bench-soak, docs/robustness.md).
+layout(std430, binding = WP_BINDING_PARAMS) readonly buffer Params { RenderParams params; };
 
 layout(binding = WP_BINDING_NODES) uniform usamplerBuffer nodeTexels;
 layout(binding = WP_BINDING_TRIANGLES) uniform usamplerBuffer triangleTexels;
@@ -23,6 +27,8 @@ layout(binding = WP_BINDING_TEXELS) uniform usamplerBuffer texelTexels;
 layout(binding = WP_BINDING_RAYS_READ) uniform usamplerBuffer rayTexels;
 layout(binding = WP_BINDING_HITS_READ) uniform usamplerBuffer hitTexels;
 layout(binding = WP_BINDING_SHADOW_RAYS_READ) uniform usamplerBuffer shadowRayTexels;
+layout(binding = WP_BINDING_BSDF_TABLES) uniform usamplerBuffer bsdfTableTexels;
+#define WP_GGX_ALBEDO(i) uintBitsToFloat(texelFetch(bsdfTableTexels, int(i)).x)
 
 layout(std430, binding = WP_BINDING_RAYS) writeonly buffer Rays { PathRay rays[]; };
 layout(std430, binding = WP_BINDING_HITS) writeonly buffer Hits { HitRecord hits[]; };
@@ -105,11 +111,12 @@ GpuMaterial loadMaterial(uint i) {
 
 GpuLight loadLight(uint i) {
   GpuLight l;
-  l.v0 = WP_FLOATS(lightTexels, i, 5u, 0u);
-  l.edge1 = WP_FLOATS(lightTexels, i, 5u, 1u);
-  l.edge2 = WP_FLOATS(lightTexels, i, 5u, 2u);
-  l.emission = WP_FLOATS(lightTexels, i, 5u, 3u);
-  l.info = WP_UINTS(lightTexels, i, 5u, 4u);
+  l.v0 = WP_FLOATS(lightTexels, i, 6u, 0u);
+  l.edge1 = WP_FLOATS(lightTexels, i, 6u, 1u);
+  l.edge2 = WP_FLOATS(lightTexels, i, 6u, 2u);
+  l.emission = WP_FLOATS(lightTexels, i, 6u, 3u);
+  l.motion = WP_FLOATS(lightTexels, i, 6u, 4u);
+  l.info = WP_UINTS(lightTexels, i, 6u, 5u);
   return l;
 }
 

@@ -35,6 +35,7 @@ CommandLine::CommandLine() {
   app.require_subcommand(1);
   render = addRenderCommand(app, renderOptions);
   view = addViewCommand(app, viewOptions);
+  merge = addMergeCommand(app, mergeOptions);
   devices = addDevicesCommand(app);
   requireFiniteNumbers(app);
 }

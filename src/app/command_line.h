@@ -15,8 +15,10 @@ struct CommandLine {
   CLI::App app{"wavepath: a wavefront path tracer for glTF scenes on Vulkan or OpenCL"};
   RenderOptions renderOptions;
   ViewOptions viewOptions;
+  MergeOptions mergeOptions;
   CLI::App* render = nullptr;
   CLI::App* view = nullptr;
+  CLI::App* merge = nullptr;
   CLI::App* devices = nullptr;
 
   CommandLine();

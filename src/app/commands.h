@@ -1,11 +1,16 @@
 // The wavepath subcommands and their options.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "app/camera_options.h"
 #include "app/pose_uploader.h"
+#include "app/resumable_render.h"
 #include "bvh/gpu_scene.h"
 #include "render/settings.h"
 #include "scene/scene.h"
@@ -21,7 +26,10 @@ struct RenderOptions {
   std::string output;  // empty: <scene name>.png in the working directory
   RenderSettings settings;
   CameraFlags camera;
-  std::string sky;              // an .hdr or .exr sky replacing the scene's; empty: keep it
+  std::string cameraName;               // --camera N|NAME: the file camera to look through
+  std::optional<size_t> sceneIndex;     // --scene N: the glTF scene to render
+  std::string sky;                      // "none", or an .hdr or .exr sky; empty: the default rule
+  std::optional<glm::vec3> skyColor;    // --sky-color R,G,B: a constant sky
   float skyIntensity = 1.0f;
   float skyRotationDegrees = 0.0f;
   bool widthGiven = false;
@@ -34,6 +42,9 @@ struct RenderOptions {
   std::optional<double> time;  // --time: seconds at which the scene is posed; unset: its rest pose
   std::string frames;          // --frames A..B: an image sequence, frame n at n / fps seconds
   double fps = 24.0;
+  std::string samples;  // --samples A..B: render only these samples of --spp (a batch of a split frame)
+  std::string region;   // --region X0,Y0,X1,Y1: render only this crop
+  CheckpointOptions checkpoint;
 };
 
 // Adds `render` to the app; the options are filled in when it parses.
@@ -79,6 +90,14 @@ struct ViewOptions {
 CLI::App* addViewCommand(CLI::App& app, ViewOptions& options);
 // Opens the viewer window; throws wp::Error when it cannot. Returns the exit code.
 int runView(ViewOptions options);
+
+// `wavepath merge PARTS... -o OUT`: parts of a split frame combined into the frame.
+struct MergeOptions {
+  std::vector<std::string> parts;
+  std::string output;
+};
+CLI::App* addMergeCommand(CLI::App& app, MergeOptions& options);
+int runMerge(const MergeOptions& options);
 
 CLI::App* addDevicesCommand(CLI::App& app);
 int runDevices();

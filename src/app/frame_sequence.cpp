@@ -15,22 +15,21 @@ bool parseFrame(const std::string& text, uint32_t& out) {
   return !text.empty() && ec == std::errc() && ptr == end;
 }
 
-[[noreturn]] void badRange(const std::string& text, const std::string& why) {
-  throw Error("'" + text + "': " + why + "; give a range of frame numbers such as --frames 0..47");
-}
-
 }  // namespace
 
-FrameRange parseFrameRange(const std::string& text) {
+FrameRange parseFrameRange(const std::string& text, const std::string& example) {
+  auto badRange = [&](const std::string& why) {
+    throw Error("'" + text + "': " + why + "; give a range such as " + example);
+  };
   const size_t dots = text.find("..");
   FrameRange range;
   const std::string first = text.substr(0, dots);
-  if (!parseFrame(first, range.first)) badRange(text, "'" + first + "' is not a frame number (0 or more)");
+  if (!parseFrame(first, range.first)) badRange("'" + first + "' is not a whole number (0 or more)");
   range.last = range.first;
   if (dots == std::string::npos) return range;
   const std::string last = text.substr(dots + 2);
-  if (!parseFrame(last, range.last)) badRange(text, "'" + last + "' is not a frame number (0 or more)");
-  if (range.first > range.last) badRange(text, "the first frame comes after the last");
+  if (!parseFrame(last, range.last)) badRange("'" + last + "' is not a whole number (0 or more)");
+  if (range.first > range.last) badRange("the first comes after the last");
   return range;
 }
 

@@ -11,9 +11,10 @@ struct FrameRange {
   uint32_t last = 0;  // inclusive
 };
 
-// Parses "A..B" (whole numbers, A <= B) or a single frame "A". Throws a one-line wp::Error
-// quoting the text on anything else (the caller names the flag).
-FrameRange parseFrameRange(const std::string& text);
+// Parses "A..B" (whole numbers, A <= B) or a single number "A" (frames, or samples of
+// --samples). Throws a one-line wp::Error quoting the text and ending with `example` on
+// anything else (the caller names the flag).
+FrameRange parseFrameRange(const std::string& text, const std::string& example = "--frames 0..47");
 
 // `pattern` with its last run of '#' replaced by `frame`, zero-padded to the run's length
 // (longer numbers are written in full): "out_####.png", 7 -> "out_0007.png". Without a

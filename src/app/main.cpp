@@ -19,9 +19,15 @@ int main(int argc, char** argv) {
     if (line.view->parsed()) {
       return wp::runView(line.viewOptions);
     }
+    if (line.merge->parsed()) {
+      return wp::runMerge(line.mergeOptions);
+    }
     if (line.devices->parsed()) {
       return wp::runDevices();
     }
+  } catch (const wp::FlagError& e) {
+    std::fprintf(stderr, "wavepath: error: %s; run 'wavepath --help' for usage\n", e.what());
+    return 2;
   } catch (const wp::Error& e) {
     wp::flushWarnings();
     std::fprintf(stderr, "wavepath: error: %s\n", e.what());

@@ -1,4 +1,5 @@
-// Progress bar on stderr.
+// Progress on stderr: redrawn in place at most ten times a second on a terminal, printed as
+// a plain line once a minute otherwise, so a batch job's log shows it without filling up.
 #include "app/progress_bar.h"
 
 #include <unistd.h>
@@ -7,29 +8,30 @@
 
 namespace wp {
 
-ProgressBar::ProgressBar() : enabled_(isatty(STDERR_FILENO) != 0), start_(std::chrono::steady_clock::now()) {}
+ProgressBar::ProgressBar() : terminal_(isatty(STDERR_FILENO) != 0) {}
 
-void ProgressBar::update(double fraction) {
-  int permille = int(fraction * 1000.0);
-  if (!enabled_ || permille == lastPermille_) {
+void ProgressBar::update(const RenderProgress& progress) {
+  const auto now = std::chrono::steady_clock::now();
+  const auto interval = terminal_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(60000);
+  if (drawn_ ? now - lastDrawn_ < interval : !terminal_ && progress.seconds < 60.0) return;
+  drawn_ = true;
+  lastDrawn_ = now;
+  const std::string line = progressLine(progress);
+  if (!terminal_) {
+    std::fprintf(stderr, "wavepath: %s\n", line.c_str());
     return;
   }
-  lastPermille_ = permille;
-  constexpr int kWidth = 40;
-  int filled = int(fraction * kWidth);
+  constexpr int kWidth = 30;
+  const double fraction = progress.pathsTotal ? double(progress.pathsDone) / double(progress.pathsTotal) : 1.0;
   char bar[kWidth + 1];
-  for (int i = 0; i < kWidth; ++i) {
-    bar[i] = i < filled ? '#' : '.';
-  }
+  for (int i = 0; i < kWidth; ++i) bar[i] = i < int(fraction * kWidth) ? '#' : '.';
   bar[kWidth] = '\0';
-  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  double remaining = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-  std::fprintf(stderr, "\r[%s] %5.1f%%  %.1f s, %.1f s left ", bar, fraction * 100.0, elapsed, remaining);
+  std::fprintf(stderr, "\r\033[K[%s] %s", bar, line.c_str());
   std::fflush(stderr);
 }
 
 void ProgressBar::finish() {
-  if (enabled_) {
+  if (terminal_ && drawn_) {
     std::fprintf(stderr, "\r\033[K");
     std::fflush(stderr);
   }

@@ -13,14 +13,17 @@
 #include <CLI/CLI.hpp>
 
 #include "app/backend_factory.h"
+#include "app/interrupt.h"
 #include "app/commands.h"
+#include "app/frame_parts.h"
 #include "app/frame_sequence.h"
 #include "app/pose_uploader.h"
-#include "app/progress_bar.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "image/image_io.h"
+#include "render/render_identity.h"
+#include "render/automatic_camera.h"
 #include "render/wavefront.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene_animation.h"
@@ -74,35 +77,108 @@ FrameRange framesToRender(const RenderOptions& o) {
   return range;
 }
 
-// Renders one pose of the scene on `backend` and writes it to `output`, with the summary line.
-void renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, PoseUploader& uploader,
-                 Scene scene, const std::string& output) {
+// A render that displays almost all black (at least this share of its pixels 0 in every 8-bit
+// channel of its PNG) gets a note saying why that may be and which flags change it.
+constexpr double kAlmostBlackShare = 0.95;
+
+void noteIfAlmostBlack(const RadianceImage& image, const DisplaySettings& display, const Scene& scene,
+                       const std::string& output) {
+  const std::vector<uint32_t> pixels = displayPixels(image, display);
+  size_t black = 0;
+  for (uint32_t p : pixels) black += (p & 0xffffffu) == 0 ? 1 : 0;
+  const double share = pixels.empty() ? 0.0 : double(black) / double(pixels.size());
+  if (share < kAlmostBlackShare) return;
+  const std::string why = scene.sky.width == 0
+                              ? "it has no sky, and its own lights reach little of what the camera sees, or too dimly "
+                                "for the exposure; try --sky-color 1,1,1 for light, or --auto-exposure"
+                              : "little light reaches what the camera sees, or too dimly for the exposure; try "
+                                "--auto-exposure or --ev100, or check the camera with --camera";
+  note(output + " is almost all black (" + std::to_string(int(std::lround(100.0 * share))) + "% of its pixels): " +
+       why);
+}
+
+// The automatic camera of a scene without one (automatic_camera.h), with its note.
+Camera frameAutomatically(const RenderOptions& o, const Scene& scene, const GpuScene& gpuScene) {
+  const AutomaticCamera automatic = chooseAutomaticCamera(scene, gpuScene, o.scene);
+  note(automatic.note);
+  return automatic.camera;
+}
+
+// Renders one pose of the scene on `backend` and writes it to `output`, with the summary
+// line. Returns 0, or the exit code of a render a signal interrupted (nothing is written
+// then but its checkpoint).
+// A scene without a camera is framed once, from its first pose, in `automaticCamera`.
+int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, PoseUploader& uploader,
+                Scene scene, const std::string& output, std::optional<Camera>& automaticCamera) {
   auto wallStart = std::chrono::steady_clock::now();
   const GpuScene& gpuScene = uploader.gpuSceneOf(scene);
+  if (!scene.hasCamera) {
+    if (!automaticCamera) automaticCamera = frameAutomatically(o, scene, gpuScene);
+    scene.camera = *automaticCamera;
+  }
   applyCameraFlags(o.camera, scene.camera, gpuScene);
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
   if (renderer.tileCount() > 1) {
+    if (!o.checkpoint.path.empty()) {
+      throw Error("the image does not fit " + backend.deviceName() + " at once and is rendered in " +
+                  std::to_string(renderer.tileCount()) +
+                  " tiles, which cannot be checkpointed; leave out --checkpoint, or render it in parts with "
+                  "--region and combine them with 'wavepath merge'");
+    }
     note("the " + std::to_string(o.settings.width) + "x" + std::to_string(o.settings.height) + " image is rendered in " +
          std::to_string(renderer.tileCount()) + " tiles, one after another: its accumulation does not fit " +
          backend.deviceName() + " at once");
   }
-  ProgressBar bar;
-  RenderStats stats = renderer.render([&](double fraction) { bar.update(fraction); });
-  bar.finish();
+  Checkpoint here;
+  here.identity = renderIdentity(gpuScene, makeRenderParams(scene, gpuScene, o.settings), o.settings);
+  here.samplesPerPixel = o.settings.samplesPerPixel;
+  here.firstSample = o.settings.firstSample;
+  here.endSample = o.settings.sampleEnd();
+  here.region = o.settings.pixelRegion();
+  here.device = o.backend + ": " + backend.deviceName();
+  RenderOutcome outcome = renderResumably(renderer, here, o.checkpoint);
+  const RenderStats& stats = outcome.stats;
+  if (outcome.interruptedBy != 0) {
+    checkValidation(choice);
+    if (o.checkpoint.path.empty())
+      std::fprintf(stderr, "wavepath: %s: render stopped, nothing written (render with --checkpoint FILE to be able "
+                           "to stop and resume)\n", signalName(outcome.interruptedBy));
+    return o.checkpoint.path.empty() ? exitCodeInterrupted(outcome.interruptedBy) : kExitInterruptedResumable;
+  }
   RadianceImage image = renderer.image();
   checkValidation(choice);
-  writeImage(output, image, displaySettings(o.camera, scene.camera.optics, image));
+  const DisplaySettings display = displaySettings(o.camera, scene.camera.optics, image);
+  image.record = renderRecord(o.settings, here.identity, display, o.camera.autoExposure);
+  writeImage(output, image, display);
+  noteIfAlmostBlack(image, display, scene, output);
+  if (!o.checkpoint.path.empty()) std::filesystem::remove(o.checkpoint.path);
 
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   double rays = double(stats.extensionRays + stats.shadowRays);
-  std::printf("%s: %ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
+  std::printf("%s: %s%ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
               "(%.1f M extension + %.1f M shadow rays) on %s\n",
-              output.c_str(), o.settings.width, o.settings.height, o.settings.samplesPerPixel, stats.seconds, wall,
-              double(stats.samples) / stats.seconds * 1e-6, rays / stats.seconds * 1e-6,
-              double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6, backend.deviceName().c_str());
+              output.c_str(), partText(o.settings).c_str(), o.settings.width, o.settings.height,
+              o.settings.samplesPerPixel, stats.seconds, wall, double(stats.samples) / stats.seconds * 1e-6,
+              rays / stats.seconds * 1e-6, double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6,
+              backend.deviceName().c_str());
   if (o.timings) {
     printTimings(stats, gpuScene, uploader.lastUpdate());
   }
+  return 0;
+}
+
+// A CLI11 check that `parse` accepts the text; its wp::Error's message says why not.
+CLI::Validator parsedBy(void (*parse)(const std::string&), const char* name) {
+  return CLI::Validator(
+      [parse](std::string& text) -> std::string {
+        try {
+          parse(text);
+        } catch (const Error& e) {
+          return e.what();
+        }
+        return "";
+      },
+      name);
 }
 
 }  // namespace
@@ -115,18 +191,36 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--frames", o.frames,
                   "Render frames A..B (inclusive) of the animations, frame n at n/fps seconds, to the -o pattern, "
                   "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            try {
-              parseFrameRange(text);
-            } catch (const Error& e) {
-              return e.what();
-            }
-            return "";
-          },
-          "A..B"))
+      ->check(parsedBy([](const std::string& text) { parseFrameRange(text); }, "A..B"))
       ->excludes(cmd->get_option("--time"));
   cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(CLI::PositiveNumber);
+  cmd->add_option("--samples", o.samples,
+                  "Render only samples A..B (inclusive, numbered from 0) of --spp: a batch of a frame split over "
+                  "machines, to combine with 'wavepath merge'")
+      ->check(parsedBy([](const std::string& text) { parseFrameRange(text, "--samples 0..15"); }, "A..B"));
+  cmd->add_option("--region", o.region,
+                  "Render only columns X0..X1-1 and rows Y0..Y1-1 of the image (X1, Y1 exclusive), to combine with "
+                  "'wavepath merge'")
+      ->check(parsedBy([](const std::string& text) { parseRegion(text); }, "X0,Y0,X1,Y1"));
+  CLI::Option* checkpoint =
+      cmd->add_option("--checkpoint", o.checkpoint.path,
+                      "Save the render's progress to FILE every --checkpoint-every seconds and when SIGINT or "
+                      "SIGTERM stops it (exit code 75); removed once the image is written")
+          ->excludes(cmd->get_option("--frames"));
+  cmd->add_option("--checkpoint-every", o.checkpoint.everySeconds,
+                  "Seconds of rendering between checkpoints (default 60; 0: after every pass)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            double value = 0.0;
+            if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0.0)
+              return "'" + text + "' is not a number of seconds (0 or more)";
+            return "";
+          },
+          "SECONDS"))
+      ->needs(checkpoint);
+  cmd->add_flag("--resume", o.checkpoint.resume,
+                "Go on from the --checkpoint FILE of an interrupted render (same scene and flags)")
+      ->needs(checkpoint);
   return cmd;
 }
 
@@ -182,7 +276,20 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
                 "kernels with warnings as errors and check the queue counters; fail on any error");
   addCameraFlags(*cmd, o.camera);
   cmd->add_option("--time", o.time, "Pose the scene's animations at this time, in seconds (default: the rest pose)");
-  cmd->add_option("--sky", o.sky, "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar");
+  cmd->add_option("--camera", o.cameraName,
+                  "The file camera to look through: its index, or the name of the camera or of its node (default: "
+                  "the first camera of the scene)");
+  cmd->add_option("--scene", o.sceneIndex, "The glTF scene to render, by index (default: the file's default scene)");
+  cmd->add_option("--sky", o.sky,
+                  "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar, or 'none' for no sky "
+                  "(default: a white sky unless the scene has lamps or emitters brighter than it)");
+  cmd->add_option_function<std::vector<float>>(
+         "--sky-color", [&o](const std::vector<float>& rgb) { o.skyColor = glm::vec3(rgb[0], rgb[1], rgb[2]); },
+         "A constant sky of this linear RGB radiance, e.g. 0.05,0.05,0.05")
+      ->delimiter(',')
+      ->expected(3)
+      ->check(CLI::Range(0.0f, 1e9f))
+      ->excludes("--sky");
   cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
   cmd->add_option("--sky-rotation", o.skyRotationDegrees, "Rotation of the sky about +y, in degrees");
   static const std::map<std::string, bool> onOff = {{"on", true}, {"off", false}};
@@ -201,8 +308,14 @@ bool validationRequested(const RenderOptions& o) {
 }
 
 Scene loadSceneWithSky(RenderOptions& o) {
-  Scene scene = loadScene(o.scene, o.sky.empty());
-  if (!o.sky.empty()) {
+  LoadOptions load;
+  load.defaultSky = o.sky.empty() && !o.skyColor;
+  load.scene = o.sceneIndex;
+  load.camera = o.cameraName;
+  Scene scene = loadScene(o.scene, load);
+  if (o.skyColor) {
+    scene.sky = makeEnvironmentMap(1, 1, {*o.skyColor});
+  } else if (!o.sky.empty() && o.sky != "none") {
     scene.sky = loadEnvironmentMap(o.sky);
   }
   checkSkyIntensity(scene.sky, o.skyIntensity);
@@ -216,7 +329,9 @@ PreparedScene prepareScene(RenderOptions& o) {
   PreparedScene p;
   Scene loaded = loadSceneWithSky(o);
   p.scene = o.time ? poseSceneOverShutter(loaded, *o.time, shutterSeconds(o, loaded)) : loaded;
-  applyCameraFlags(o.camera, p.scene.camera, p.uploader.gpuSceneOf(p.scene));
+  const GpuScene& gpuScene = p.uploader.gpuSceneOf(p.scene);
+  if (!p.scene.hasCamera) p.scene.camera = loaded.camera = frameAutomatically(o, p.scene, gpuScene);
+  applyCameraFlags(o.camera, p.scene.camera, gpuScene);
   // Kept only to pose again: a static scene needs no second copy of its meshes.
   if (loaded.animation) p.loaded = std::move(loaded);
   return p;
@@ -229,8 +344,14 @@ int runRender(RenderOptions o) {
   }
   const FrameRange frames = framesToRender(o);
   checkOutputPath(framePath(o.output, frames.first));
+  checkCheckpointFlags(o.checkpoint, o.output);
+  catchInterrupts();
 
+  // The device first: a missing or unusable one is one error line before any scene work.
+  BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
+  std::unique_ptr<Backend> backend = createBackend(choice);
   const Scene scene = loadSceneWithSky(o);
+  applyPartFlags(o.settings, o.samples, o.region);
   if (!o.frames.empty() && !scene.animation) {
     note(o.scene + " has no animation: every frame is the same image");
   } else if (!o.frames.empty() && frames.last / o.fps > scene.animation->duration) {
@@ -238,14 +359,14 @@ int runRender(RenderOptions o) {
     std::snprintf(duration, sizeof(duration), "%g", scene.animation->duration);
     note(o.scene + "'s animations end at " + duration + " s: later frames hold their last pose");
   }
-  BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
-  std::unique_ptr<Backend> backend = createBackend(choice);
   PoseUploader uploader;
   const double shutter = shutterSeconds(o, scene);
+  std::optional<Camera> automaticCamera;
   for (uint32_t frame = frames.first;; ++frame) {
     const std::optional<double> time = o.frames.empty() ? o.time : std::optional<double>(frame / o.fps);
-    renderFrame(o, choice, *backend, uploader, time ? poseSceneOverShutter(scene, *time, shutter) : scene,
-                framePath(o.output, frame));
+    const int code = renderFrame(o, choice, *backend, uploader, time ? poseSceneOverShutter(scene, *time, shutter) : scene,
+                                 framePath(o.output, frame), automaticCamera);
+    if (code != 0) return code;
     if (frame == frames.last) break;  // tested here, as frames.last may be the largest uint32_t
   }
   return 0;

@@ -33,7 +33,7 @@ constexpr uint32_t kInstanceLeafSize = 1;
 
 using Clock = std::chrono::steady_clock;
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+using gpu::luminance;
 
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -100,6 +100,15 @@ Triangle triangleOf(const Mesh& mesh, size_t t) {
 }
 
 uint32_t textureIndex(int index) { return index < 0 ? WP_INVALID : uint32_t(index); }
+
+uint32_t gpuMaterialKind(Material::Bsdf bsdf) {
+  switch (bsdf) {
+    case Material::Bsdf::Lambert: return WP_MATERIAL_LAMBERT;
+    case Material::Bsdf::GltfDisneyDiffuse: return WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
+    case Material::Bsdf::Gltf: break;
+  }
+  return WP_MATERIAL_GLTF;
+}
 
 void packTextures(const Scene& scene, GpuScene& out) {
   for (const Texture& texture : scene.textures) {
@@ -190,8 +199,9 @@ struct InstanceCandidates {
   }
 };
 
-// Appends the world-space lights of one mesh instance and their selection weights: power,
-// from the triangle's mean emission (so black parts of an emissive texture get few samples).
+// Appends the world-space lights of one mesh instance and their selection weights: power
+// (flux, by luminance), from the triangle's mean emission (so black parts of an emissive
+// texture get few samples): pi * luminance * area per emitting side.
 void appendLights(const Scene& scene, const Mesh& mesh, const std::vector<pack_detail::Emitter>& emitters,
                   const glm::mat4& toWorld, std::vector<gpu::GpuLight>& lights, std::vector<double>& power) {
   for (const pack_detail::Emitter& emitter : emitters) {
@@ -201,11 +211,63 @@ void appendLights(const Scene& scene, const Mesh& mesh, const std::vector<pack_d
     }
     const Material& material = scene.materials[mesh.materials[emitter.triangle]];
     float area = 0.5f * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
-    lights.push_back({glm::vec4(v[0], area), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
-                      glm::vec4(material.emission, emitter.weight),
-                      glm::uvec4(0u, material.doubleSided ? 1u : 0u, emitter.packed,
-                                 textureIndex(material.emissiveTexture))});
-    power.push_back(static_cast<double>(emitter.weight) * area * (material.doubleSided ? 2.0 : 1.0));
+    gpu::GpuLight& light = lights.emplace_back();
+    light.v0 = glm::vec4(v[0], area);
+    light.edge1 = glm::vec4(v[1] - v[0], 0.0f);
+    light.edge2 = glm::vec4(v[2] - v[0], 0.0f);
+    light.emission = glm::vec4(material.emission, emitter.weight);
+    light.motion = glm::vec4(0.0f);
+    light.info = glm::uvec4(0u, WP_LIGHT_TRIANGLE | (material.doubleSided ? WP_LIGHT_DOUBLE_SIDED : 0u), emitter.packed,
+                            textureIndex(material.emissiveTexture));
+    power.push_back(std::numbers::pi * emitter.weight * area * (material.doubleSided ? 2.0 : 1.0));
+  }
+}
+
+// The flux (by luminance) of a punctual light, its weight in the light table: a point light
+// 4 pi I; a spot I times the solid angle its falloff weighs, 2 pi (1 - cos_o - 2/3 d) with
+// d = cos_i - cos_o (the integral of the extension's ((cos - cos_o) / d)^2 over the cone's
+// rim, as spotFalloff keeps d from vanishing); a directional light E through the scene's
+// bounding disc, pi r^2 E, as the sky's power is counted.
+double punctualFlux(const PunctualLight& light, double sceneRadius) {
+  const double intensity = luminance(light.intensity);
+  switch (light.kind) {
+    case PunctualLight::Kind::Point: return 4.0 * std::numbers::pi * intensity;
+    case PunctualLight::Kind::Spot: {
+      const double cosOuter = std::cos(double(light.outerConeAngle));
+      const double rim = std::max(std::cos(double(light.innerConeAngle)) - cosOuter, 1e-3);
+      return 2.0 * std::numbers::pi * intensity * std::max(1.0 - cosOuter - 2.0 / 3.0 * rim, 0.0);
+    }
+    case PunctualLight::Kind::Directional: return std::numbers::pi * sceneRadius * sceneRadius * intensity;
+  }
+  return 0.0;
+}
+
+uint32_t gpuLightKind(PunctualLight::Kind kind) {
+  switch (kind) {
+    case PunctualLight::Kind::Point: return WP_LIGHT_POINT;
+    case PunctualLight::Kind::Spot: return WP_LIGHT_SPOT;
+    case PunctualLight::Kind::Directional: break;
+  }
+  return WP_LIGHT_DIRECTIONAL;
+}
+
+// Appends the scene's punctual lights after the triangles, with where they are at shutter open
+// and close (lights.h interpolates between) and their flux.
+void appendPunctualLights(const Scene& scene, double sceneRadius, std::vector<gpu::GpuLight>& lights,
+                          std::vector<double>& power) {
+  for (const PunctualLight& light : scene.lights) {
+    PunctualLight closed = light;
+    closed.lightToWorld = light.lightToWorldAtClose.value_or(light.lightToWorld);
+    const bool spot = light.kind == PunctualLight::Kind::Spot;
+    gpu::GpuLight g{};
+    g.v0 = glm::vec4(light.position(), spot ? std::cos(light.outerConeAngle) : 0.0f);
+    g.edge1 = glm::vec4(light.direction(), 0.0f);
+    g.edge2 = glm::vec4(closed.position(), 0.0f);
+    g.emission = glm::vec4(light.intensity, luminance(light.intensity));
+    g.motion = glm::vec4(closed.direction(), spot ? std::cos(light.innerConeAngle) : 1.0f);
+    g.info = glm::uvec4(0u, gpuLightKind(light.kind), WP_INVALID, WP_INVALID);
+    lights.push_back(g);
+    power.push_back(punctualFlux(light, sceneRadius));
   }
 }
 
@@ -218,14 +280,19 @@ void packSky(const Scene& scene, GpuScene& out) {
   out.sky = gpu::makeEnvironment(sky.width, sky.height, scene.skyIntensity, scene.skyRotation);
 }
 
-// Sets the probability that next event estimation samples the sky rather than the
-// triangles: in proportion to power, the sky's through the scene's bounding sphere and the
-// triangles' pi * luminance * area (per emitting side).
-void setSkyProbability(const Scene& scene, double trianglePower, GpuScene& out) {
-  double radius = 0.5 * glm::length(out.boundsMax - out.boundsMin);
-  double skyPower =
-      scene.sky.width > 0 ? environmentPower(scene.sky, scene.skyIntensity, radius > 0.0 ? radius : 1.0) : 0.0;
-  double total = skyPower + std::numbers::pi * trianglePower;
+// The radius of the sphere around the instances' bounds (1 without instances), across which
+// the sky's and a directional light's power are counted.
+double sceneRadius(const GpuScene& out) {
+  const double radius = 0.5 * glm::length(out.boundsMax - out.boundsMin);
+  return radius > 0.0 ? radius : 1.0;
+}
+
+// Sets the probability that next event estimation samples the sky rather than the light
+// table: in proportion to power, the sky's through the scene's bounding sphere against the
+// lights' flux.
+void setSkyProbability(const Scene& scene, double lightFlux, GpuScene& out) {
+  double skyPower = scene.sky.width > 0 ? environmentPower(scene.sky, scene.skyIntensity, sceneRadius(out)) : 0.0;
+  double total = skyPower + lightFlux;
   out.sky.transform.z = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
 }
 
@@ -390,12 +457,14 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
       out.instances.push_back(keys->close);
     }
   }
+  appendPunctualLights(scene, sceneRadius(out), out.lights, power);
+  out.punctualLightCount = static_cast<uint32_t>(scene.lights.size());
   buildLightTable(out.lights, power);
-  double trianglePower = 0.0;
+  double lightFlux = 0.0;
   for (double p : power) {
-    trianglePower += p;
+    lightFlux += p;
   }
-  setSkyProbability(scene, trianglePower, out);
+  setSkyProbability(scene, lightFlux, out);
   time.lights = seconds(start);
   return time;
 }
@@ -441,7 +510,7 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
         {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),
          glm::vec4(material.metallic, material.roughness, material.ior, material.transmission),
          glm::vec4(material.attenuationColor, material.attenuationDistance),
-         glm::uvec4(material.bsdf == Material::Bsdf::Lambert ? WP_MATERIAL_LAMBERT : WP_MATERIAL_GLTF,
+         glm::uvec4(gpuMaterialKind(material.bsdf),
                     textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
                     textureIndex(material.normalTexture)),
          glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f),

@@ -39,9 +39,11 @@ struct GpuScene {
   bool moving() const { return instances.size() > placedInstances; }
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
-  // World-space emissive triangles: for each still mesh instance in `instances` order, its
-  // mesh's emissive non-degenerate triangles in the mesh's original order.
+  // The light table: world-space emissive triangles (for each still mesh instance in
+  // `instances` order, its mesh's emissive non-degenerate triangles in the mesh's original
+  // order), then the scene's punctual lights in its order.
   std::vector<gpu::GpuLight> lights;
+  uint32_t punctualLightCount = 0;  // the last entries of `lights`
   // The sky (environment.h): radiance texels, row and column distributions, settings. A
   // scene without a sky gets one black texel, never sampled.
   std::vector<glm::vec4> skyRadiance;

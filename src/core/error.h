@@ -13,4 +13,11 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+// A flag that is well-formed but does not fit the rest (a region outside the image, samples
+// past --spp), found after parsing: reported like a parse error (exit code 2).
+class FlagError : public Error {
+public:
+  using Error::Error;
+};
+
 }  // namespace wp

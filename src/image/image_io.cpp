@@ -1,23 +1,19 @@
 // PNG and EXR output written atomically, and EXR input, through stb_image_write and tinyexr.
 #include "image/image_io.h"
 
-#include <fcntl.h>
-#include <signal.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
-#include <atomic>
-#include <csignal>
 #include <cctype>
-#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_read.h"
 #include "shaders/common/exposure.h"
@@ -42,81 +38,6 @@ fs::path directoryOf(const fs::path& path) { return path.has_parent_path() ? pat
 
 [[noreturn]] void failRead(const fs::path& path, const std::string& reason) {
   throw Error("cannot read EXR '" + path.string() + "': " + reason);
-}
-
-// Closes and removes the temporary file unless the write succeeded and renamed it into place.
-struct TempFileGuard {
-  fs::path path;
-  int fd = -1;
-  bool renamed = false;
-  ~TempFileGuard() {
-    if (fd >= 0) ::close(fd);
-    if (!renamed) ::unlink(path.c_str());
-  }
-};
-
-std::string systemError(int error) { return std::strerror(error); }
-
-// The signals that end a process by default: Ctrl-C, kill, a closed terminal, Ctrl-\.
-constexpr std::array<int, 4> kTerminationSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
-volatile std::sig_atomic_t gDeferredSignal = 0;
-extern "C" void deferSignal(int signal) { gDeferredSignal = signal; }
-
-// While it lives, a termination signal (whichever thread gets it) is only noted; when it
-// ends, the previous handlers come back and a noted signal is raised again, with the effect
-// it would have had. Not for concurrent use: images are written one at a time.
-class TerminationSignalsDeferred {
-public:
-  TerminationSignalsDeferred() {
-    struct sigaction defer {};
-    defer.sa_handler = deferSignal;
-    defer.sa_flags = SA_RESTART;
-    sigemptyset(&defer.sa_mask);
-    for (size_t i = 0; i < kTerminationSignals.size(); ++i) sigaction(kTerminationSignals[i], &defer, &previous_[i]);
-  }
-  ~TerminationSignalsDeferred() {
-    for (size_t i = 0; i < kTerminationSignals.size(); ++i) sigaction(kTerminationSignals[i], &previous_[i], nullptr);
-    if (const int signal = gDeferredSignal) {
-      gDeferredSignal = 0;
-      std::raise(signal);
-    }
-  }
-  TerminationSignalsDeferred(const TerminationSignalsDeferred&) = delete;
-  TerminationSignalsDeferred& operator=(const TerminationSignalsDeferred&) = delete;
-
-private:
-  std::array<struct sigaction, kTerminationSignals.size()> previous_{};
-};
-
-// Writes `bytes` to a uniquely named hidden file beside `path`, flushes it to disk and
-// renames it over `path`: rename is atomic within a directory, so readers (and a crash) see
-// either the old file or the complete new one, never a partial image. Interrupted (SIGINT,
-// SIGTERM), it finishes the write and the rename first, so no hidden file is left behind.
-void writeFileAtomically(const fs::path& path, const std::vector<unsigned char>& bytes) {
-  const TerminationSignalsDeferred deferred;  // declared first: ends after the temporary is gone
-  static std::atomic<unsigned> counter{0};
-  std::string tempName = ".";  // hidden; appended piecewise to dodge a GCC 12 -Wrestrict false positive
-  tempName += path.filename().string();
-  tempName += ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  fs::path tempPath = directoryOf(path) / tempName;
-  int fd = ::open(tempPath.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) failWrite(path, systemError(errno) + "; check the directory's permissions and free space");
-  TempFileGuard temp{tempPath, fd};
-  size_t written = 0;
-  while (written < bytes.size()) {
-    ssize_t n = ::write(temp.fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) failWrite(path, systemError(errno) + "; check free space and try again");
-    written += static_cast<size_t>(n);
-  }
-  int syncError = ::fsync(temp.fd) == 0 ? 0 : errno;
-  int closeError = ::close(temp.fd) == 0 ? 0 : errno;
-  temp.fd = -1;
-  if (syncError || closeError)
-    failWrite(path, systemError(syncError ? syncError : closeError) + "; check free space and try again");
-  if (::rename(temp.path.c_str(), path.c_str()) != 0)
-    failWrite(path, systemError(errno) + "; check the output path");
-  temp.renamed = true;
 }
 
 void checkImageShape(const fs::path& path, const RadianceImage& image) {
@@ -190,8 +111,21 @@ std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& 
     std::strncpy(channels[c].name, names[c], sizeof(channels[c].name) - 1);
   }
 
+  std::vector<HeaderAttribute> attributes;
+  if (image.record) attributes = recordAttributes(*image.record);
+  std::vector<EXRAttribute> exrAttributes(attributes.size());
+  for (size_t a = 0; a < attributes.size(); ++a) {
+    std::memset(&exrAttributes[a], 0, sizeof(EXRAttribute));
+    std::strncpy(exrAttributes[a].name, attributes[a].name.c_str(), sizeof(exrAttributes[a].name) - 1);
+    std::strncpy(exrAttributes[a].type, attributes[a].type.c_str(), sizeof(exrAttributes[a].type) - 1);
+    exrAttributes[a].value = attributes[a].value.data();
+    exrAttributes[a].size = int(attributes[a].value.size());
+  }
+
   EXRHeader header;
   InitEXRHeader(&header);
+  header.num_custom_attributes = int(exrAttributes.size());
+  header.custom_attributes = exrAttributes.data();
   header.num_channels = channelCount;
   header.channels = channels.data();
   header.pixel_types = pixelTypes.data();
@@ -275,7 +209,7 @@ void writePng(const fs::path& path, uint32_t width, uint32_t height, const std::
   checkOutputPath(path);
   std::vector<unsigned char> bytes = encodePng(width, height, pixels);
   if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); capture a smaller window");
-  writeFileAtomically(path, bytes);
+  writeFileAtomically(path, bytes, "image");
 }
 
 void writeImage(const fs::path& path, const RadianceImage& image, const DisplaySettings& display) {
@@ -288,7 +222,7 @@ void writeImage(const fs::path& path, const RadianceImage& image, const DisplayS
   } else {
     bytes = encodeExr(path, image);
   }
-  writeFileAtomically(path, bytes);
+  writeFileAtomically(path, bytes, "image");
 }
 
 RadianceImage readExr(const fs::path& path) {
@@ -333,7 +267,15 @@ RadianceImage readExr(const fs::path& path) {
     failRead(path, takeExrMessage(err) + "; check that the file is intact");
   }
 
+  std::vector<HeaderAttribute> attributes;
+  for (int a = 0; a < exr.header.num_custom_attributes; ++a) {
+    const EXRAttribute& attribute = exr.header.custom_attributes[a];
+    std::vector<unsigned char> value;
+    if (attribute.value != nullptr && attribute.size > 0) value.assign(attribute.value, attribute.value + attribute.size);
+    attributes.push_back({attribute.name, attribute.type, std::move(value)});
+  }
   RadianceImage result;
+  result.record = recordFromAttributes(attributes, path.string());
   result.width = uint32_t(exr.image.width);
   result.height = uint32_t(exr.image.height);
   size_t pixels = size_t(result.width) * result.height;

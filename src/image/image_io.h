@@ -4,7 +4,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
+
+#include "image/display_settings.h"
+#include "image/render_record.h"
 
 namespace wp {
 
@@ -14,16 +18,8 @@ struct RadianceImage {
   uint32_t width = 0, height = 0;
   std::vector<glm::vec3> mean;
   std::vector<glm::vec3> variance;
-};
-
-// How linear radiance becomes a display image (PNG): scaled by `exposure` (1 / the luminance
-// that maps to white), tone mapped (WP_TONE_* in tone_curves.h), then encoded with the sRGB
-// transfer function or a plain gamma (WP_TRANSFER_*). EXR output ignores it: it stays linear.
-struct DisplaySettings {
-  float exposure = 1.0f;
-  uint32_t toneMapper = 0;  // WP_TONE_CLAMP
-  uint32_t transfer = 0;    // WP_TRANSFER_SRGB
-  float gamma = 2.2f;       // used with WP_TRANSFER_GAMMA
+  // What the image holds of which frame (samples, region, scene), when a render made it.
+  std::optional<RenderRecord> record;
 };
 
 // The exposure that maps the image's log-average luminance to middle grey (Reinhard 2002).
@@ -43,17 +39,18 @@ void checkOutputPath(const std::filesystem::path& path);
 
 // Writes `image` to `path`, chosen by extension: .png is 8-bit, made for display as `display`
 // says (by default clamped to [0, 1] and sRGB-encoded), .exr is 32-bit float linear R, G, B
-// plus variance.R/G/B when variance is present. The file appears whole or not at all
+// plus variance.R/G/B when variance is present, with image.record in its header (EXR
+// only). The file appears whole or not at all
 // (written beside it, then renamed). Throws wp::Error on failure.
 void writeImage(const std::filesystem::path& path, const RadianceImage& image, const DisplaySettings& display = {});
 
 // The most pixels an image reader accepts: the largest image wavepath renders.
 inline constexpr uint64_t kMaxImagePixels = 16384ull * 16384ull;
 
-// Reads R, G, B (and variance.R/G/B when present) of a scanline EXR as float. Throws
-// wp::Error when the file is not a regular file, cannot be read, is damaged, lacks R, G or B,
-// or declares more than kMaxImagePixels pixels or more than its bytes can hold (checked
-// before the pixels are allocated).
+// Reads R, G, B (and variance.R/G/B and the render record when present) of a scanline EXR
+// as float. Throws wp::Error when the file is not a regular file, cannot be read, is
+// damaged, lacks R, G or B, or declares more than kMaxImagePixels pixels or more than its
+// bytes can hold (checked before the pixels are allocated).
 RadianceImage readExr(const std::filesystem::path& path);
 
 }  // namespace wp

@@ -2,6 +2,7 @@
 #include "render/backend.h"
 
 #include "bvh/gpu_scene.h"
+#include "core/error.h"
 
 namespace wp {
 
@@ -28,6 +29,16 @@ std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
           arrayOf(s.triangleShading, "triangle shading"),
           arrayOf(s.textures, "textures"),
           arrayOf(s.texels, "texture texels")};
+}
+
+std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels) {
+  if (accumulation.sum.size() != pixels || accumulation.sumSquares.size() != pixels) {
+    throw Error("internal: an accumulation of " + std::to_string(accumulation.sum.size()) + " pixels for an image of " +
+                std::to_string(pixels));
+  }
+  std::vector<glm::vec4> both(accumulation.sum);
+  both.insert(both.end(), accumulation.sumSquares.begin(), accumulation.sumSquares.end());
+  return both;
 }
 
 const char* kernelName(Kernel kernel) {

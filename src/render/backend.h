@@ -67,6 +67,11 @@ struct Accumulation {
   std::vector<glm::vec4> sumSquares;
 };
 
+// The accumulation buffer's contents for `accumulation` (WP_BINDING_ACCUM: the sums of
+// every pixel, then the sums of squares); throws wp::Error when the arrays do not hold
+// `pixels` entries each.
+std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels);
+
 class Backend {
 public:
   virtual ~Backend() = default;
@@ -96,6 +101,9 @@ public:
   // Runs the recorded pass and waits for it.
   virtual PassResult endPass() = 0;
   virtual Accumulation readAccumulation() = 0;
+  // Replaces the accumulation with `accumulation` (one entry per pixel of params.image.z in
+  // each array), e.g. a checkpoint's sums to go on from.
+  virtual void writeAccumulation(const Accumulation& accumulation) = 0;
 };
 
 }  // namespace wp

@@ -11,6 +11,11 @@
 namespace wp {
 
 gpu::ThinLens makeLens(const Camera& camera, uint32_t width, uint32_t height) {
+  if (camera.orthographic) {
+    const float halfHeight = camera.orthographicHalfHeight;
+    return gpu::makeOrthographicLens(camera.position, camera.forward, camera.up,
+                                     glm::vec2(halfHeight * float(width) / float(height), halfHeight));
+  }
   const CameraOptics& o = camera.optics;
   glm::vec2 filmHalf = gpu::filmHalfExtent(o.sensorSize, float(width) / float(height));
   bool pinhole = !(o.fNumber > 0.0f);

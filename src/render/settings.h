@@ -8,10 +8,27 @@ namespace wp {
 enum class IntegratorMode { Mis, NeeOnly, BsdfOnly };
 enum class LightSelection { Power, SolidAngle };
 
+// A crop of the image: columns [x0, x1) and rows [y0, y1), in pixels from the top left.
+struct PixelRegion {
+  uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  uint32_t width() const { return x1 - x0; }
+  uint32_t height() const { return y1 - y0; }
+  uint64_t pixels() const { return uint64_t(width()) * height(); }
+  bool operator==(const PixelRegion&) const = default;
+};
+
 struct RenderSettings {
   uint32_t width = 512;
   uint32_t height = 512;
   uint32_t samplesPerPixel = 64;
+  // The samples of each pixel this render traces, [firstSample, endSample) of the
+  // samplesPerPixel that make the frame (--samples A..B: one batch of a frame split over
+  // machines); endSample 0 means samplesPerPixel.
+  uint32_t firstSample = 0;
+  uint32_t endSample = 0;
+  // The pixels this render traces (--region); empty (x1 = 0) means the whole image. A pixel
+  // gets the same samples whatever the region, so crops merge into the whole image exactly.
+  PixelRegion region;
   // Cycles' "max bounces": 0 is direct light only; a path has at most maxBounces + 2
   // segments (camera ray, maxBounces bounces, and the segment that reaches the light).
   uint32_t maxBounces = 8;
@@ -40,6 +57,10 @@ struct RenderSettings {
   // Biased: scale each contribution but emission seen by the camera down to at most this
   // luminance (0 = off), trading energy for fewer fireflies.
   float contributionClamp = 0.0f;
+
+  uint32_t sampleEnd() const { return endSample == 0 ? samplesPerPixel : endSample; }
+  uint32_t samplesInRange() const { return sampleEnd() - firstSample; }
+  PixelRegion pixelRegion() const { return region.x1 == 0 ? PixelRegion{0, 0, width, height} : region; }
 };
 
 }  // namespace wp

@@ -22,13 +22,15 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   if (!settings.skySampling) {
     p.sky.transform.z = 0.0f;  // the sky is then found by BSDF sampling alone
   }
-  uint32_t pixels = settings.width * settings.height;
+  const PixelRegion region = settings.pixelRegion();
+  const uint32_t pixels = uint32_t(region.pixels());
   p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);
+  p.region = glm::uvec4(region.x0, region.y0, region.width(), region.height());
   uint32_t mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
                   : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
                                                              : WP_MODE_BSDF;
   p.mode = glm::uvec4(settings.maxBounces, mode, settings.russianRouletteStart, uint32_t(gpuScene.lights.size()));
-  uint64_t totalPaths = uint64_t(pixels) * settings.samplesPerPixel;
+  uint64_t totalPaths = uint64_t(pixels) * settings.samplesInRange();
   uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
   p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, gpuScene.placedInstances,
                         maxPaths);
@@ -36,19 +38,20 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
                        (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
   uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
                                                                                   : WP_LIGHT_SELECTION_POWER;
-  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection, 0u);
-  p.tile = glm::uvec4(0u, 0u, settings.width, settings.height);
+  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection,
+                         gpuScene.punctualLightCount);
   return p;
 }
 
-std::vector<Tile> splitIntoTiles(uint32_t width, uint32_t height, uint64_t maxPixels) {
-  const uint64_t rowsPerTile = std::clamp<uint64_t>(maxPixels / width, 1, height);
+std::vector<PixelRegion> splitIntoTiles(const PixelRegion& region, uint64_t maxPixels) {
+  const uint32_t height = region.height();
+  const uint64_t rowsPerTile = std::clamp<uint64_t>(maxPixels / region.width(), 1, height);
   const uint64_t count = (height + rowsPerTile - 1) / rowsPerTile;
-  std::vector<Tile> tiles;
+  std::vector<PixelRegion> tiles;
   for (uint64_t i = 0; i < count; ++i) {
-    const auto top = uint32_t(height * i / count);
-    const auto bottom = uint32_t(height * (i + 1) / count);
-    tiles.push_back({0, top, width, bottom - top});
+    const auto top = region.y0 + uint32_t(height * i / count);
+    const auto bottom = region.y0 + uint32_t(height * (i + 1) / count);
+    tiles.push_back({region.x0, top, region.x1, bottom});
   }
   return tiles;
 }
@@ -64,20 +67,50 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   settings_ = settings;
   settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
-  tiles_ = splitIntoTiles(settings_.width, settings_.height, backend_.maxAccumulationPixels(settings_.maxPaths));
-  image_ = {};
+  const PixelRegion region = settings_.pixelRegion();
+  firstPath_ = region.pixels() * settings_.firstSample;
+  pathsDone_ = firstPath_;
+  tiles_ = splitIntoTiles(region, backend_.maxAccumulationPixels(settings_.maxPaths));
+  tiledSums_ = {};
+  if (tiles_.size() > 1) {
+    tiledSums_.sum.assign(region.pixels(), glm::vec4(0.0f));
+    tiledSums_.sumSquares.assign(region.pixels(), glm::vec4(0.0f));
+  }
   configureTile(0);
 }
 
 void WavefrontRenderer::configureTile(size_t index) {
-  const Tile& tile = tiles_[index];
-  const uint32_t pixels = tile.width * tile.height;
-  params_.tile = glm::uvec4(tile.x, tile.y, tile.width, tile.height);
-  params_.image.z = pixels;
-  params_.counts.w = uint32_t(std::clamp<uint64_t>(uint64_t(pixels) * settings_.samplesPerPixel, 1, settings_.maxPaths));
+  const PixelRegion& tile = tiles_[index];
+  params_.region = glm::uvec4(tile.x0, tile.y0, tile.width(), tile.height());
+  params_.image.z = uint32_t(tile.pixels());
+  params_.counts.w =
+      uint32_t(std::clamp<uint64_t>(tile.pixels() * settings_.samplesInRange(), 1, settings_.maxPaths));
   backend_.configure(params_);
   tile_ = index;
-  pathsDone_ = 0;
+}
+
+uint64_t WavefrontRenderer::tileStart(size_t index) const {
+  uint64_t start = firstPath_;
+  for (size_t t = 0; t < index; ++t) start += tiles_[t].pixels() * settings_.samplesInRange();
+  return start;
+}
+
+uint64_t WavefrontRenderer::tileEnd(size_t index) const {
+  return tileStart(index) + tiles_[index].pixels() * settings_.samplesInRange();
+}
+
+void WavefrontRenderer::storeTile() {
+  const Accumulation tile = backend_.readAccumulation();
+  const PixelRegion region = settings_.pixelRegion();
+  const size_t at = size_t(tiles_[tile_].y0 - region.y0) * region.width();  // tiles are bands of whole rows
+  std::copy(tile.sum.begin(), tile.sum.end(), tiledSums_.sum.begin() + long(at));
+  std::copy(tile.sumSquares.begin(), tile.sumSquares.end(), tiledSums_.sumSquares.begin() + long(at));
+}
+
+void WavefrontRenderer::resume(const Accumulation& accumulation, uint64_t pathsDone) {
+  if (tiles_.size() > 1) throw std::logic_error("a render in tiles cannot resume a checkpoint");
+  backend_.writeAccumulation(accumulation);
+  pathsDone_ = pathsDone;
 }
 
 void WavefrontRenderer::restart(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings,
@@ -116,47 +149,33 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
 }
 
 void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
+  // The current tile's pixels, and where the next path lies in its own render order.
   const uint64_t pixels = params_.image.z;
-  uint32_t count = uint32_t(std::min<uint64_t>({params_.counts.w, maxCount, end - pathsDone_}));
-  runPass(uint32_t(pathsDone_ % pixels), uint32_t(pathsDone_ / pixels), count, stats);
+  const uint64_t stop = tiles_.size() > 1 ? std::min(end, tileEnd(tile_)) : end;
+  const uint64_t path = pixels * settings_.firstSample + (pathsDone_ - tileStart(tile_));
+  uint32_t count = uint32_t(std::min<uint64_t>({params_.counts.w, maxCount, stop - pathsDone_}));
+  runPass(uint32_t(path % pixels), uint32_t(path / pixels), count, stats);
   pathsDone_ += count;
   stats.samples += count;
 }
 
-RenderStats WavefrontRenderer::render(const std::function<void(double)>& progress) {
+RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats&)>& afterPass) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t total = uint64_t(settings_.width) * settings_.height * settings_.samplesPerPixel;
-  const bool tiled = tiles_.size() > 1;
-  if (tiled) {
-    image_.width = settings_.width;
-    image_.height = settings_.height;
-    image_.mean.resize(size_t(image_.width) * image_.height);
-    image_.variance.resize(image_.mean.size());
-  }
-  for (size_t t = tiled ? 0 : tile_; t < tiles_.size(); ++t) {
-    if (t != tile_ || tiled) configureTile(t);
-    const uint64_t end = pathsDone_ + uint64_t(params_.image.z) * settings_.samplesPerPixel;
-    while (pathsDone_ < end) {
-      runNextPass(end, params_.counts.w, stats);
-      if (progress) {
-        progress(double(stats.samples) / double(total));
-      }
+  while (pathsDone_ < pathsEnd()) {
+    runNextPass(pathsEnd(), params_.counts.w, stats);
+    if (tiles_.size() > 1 && pathsDone_ == tileEnd(tile_)) {
+      storeTile();
+      if (tile_ + 1 < tiles_.size()) configureTile(tile_ + 1);
     }
-    if (tiled) {
-      const RadianceImage part = tileImage();
-      const Tile& tile = tiles_[t];
-      for (uint32_t row = 0; row < tile.height; ++row) {
-        const size_t from = size_t(row) * tile.width;
-        const size_t to = size_t(tile.y + row) * image_.width + tile.x;
-        std::copy_n(part.mean.begin() + from, tile.width, image_.mean.begin() + to);
-        std::copy_n(part.variance.begin() + from, tile.width, image_.variance.begin() + to);
-      }
-    }
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (afterPass && !afterPass(stats)) break;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
+
+uint64_t WavefrontRenderer::pathsEnd() const { return settings_.pixelRegion().pixels() * settings_.sampleEnd(); }
 
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
   if (tiles_.size() > 1) {
@@ -192,10 +211,17 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   return stats;
 }
 
-uint32_t WavefrontRenderer::samplesPerPixelDone() const { return uint32_t(pathsDone_ / params_.image.z); }
+uint32_t WavefrontRenderer::samplesPerPixelDone() const {
+  return uint32_t((pathsDone_ - firstPath_) / settings_.pixelRegion().pixels());
+}
+
+Accumulation WavefrontRenderer::accumulation() {
+  if (tiles_.size() > 1) throw std::logic_error("a render in tiles has no checkpoint");
+  return backend_.readAccumulation();
+}
 
 RadianceImage WavefrontRenderer::image() {
-  RadianceImage image = tiles_.size() > 1 ? std::move(image_) : tileImage();
+  RadianceImage image = imageOf(tiles_.size() > 1 ? tiledSums_ : backend_.readAccumulation());
   // What a scene may hold is bounded (radiance_limit.h, the loader's checks) so that no sum
   // overflows: a pixel that is not finite is a bug, said rather than written to a file.
   for (size_t i = 0; i < image.mean.size(); ++i) {
@@ -208,15 +234,16 @@ RadianceImage WavefrontRenderer::image() {
   return image;
 }
 
-RadianceImage WavefrontRenderer::tileImage() {
-  Accumulation acc = backend_.readAccumulation();
+RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   RadianceImage image;
-  image.width = params_.tile.z;
-  image.height = params_.tile.w;
+  const PixelRegion region = settings_.pixelRegion();
+  image.width = region.width();
+  image.height = region.height();
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
-  const uint64_t fullSamples = pathsDone_ / pixels, startedPixels = pathsDone_ % pixels;
+  const uint64_t done = pathsDone_ - firstPath_;
+  const uint64_t fullSamples = done / pixels, startedPixels = done % pixels;
   for (size_t i = 0; i < pixels; ++i) {
     // Mid-pass (progressive rendering), the first startedPixels pixels have one more sample.
     double n = double(std::max<uint64_t>(fullSamples + (i < startedPixels ? 1 : 0), 1));

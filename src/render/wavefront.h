@@ -25,31 +25,28 @@ struct RenderStats {
   std::array<double, kKernelCount> kernelMs{};  // summed over passes
 };
 
-// The GPU-side parameters of a render of `scene` (camera, image, integrator switches), with
-// the whole image as its tile.
+// The GPU-side parameters of a render of `scene` (camera, image, integrator switches).
 gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
-// A rectangle of the image rendered on its own (RenderParams::tile).
-struct Tile {
-  uint32_t x = 0, y = 0, width = 0, height = 0;
-};
-
-// The image cut into bands of whole rows, as few as keep each under `maxPixels` and as even
-// as that allows; a single row when not even one fits (the backend then says so).
-std::vector<Tile> splitIntoTiles(uint32_t width, uint32_t height, uint64_t maxPixels);
+// `region` cut into bands of whole rows, as few as keep each under `maxPixels` and as even
+// as that allows; one row each when not even one fits (the backend then says so).
+std::vector<PixelRegion> splitIntoTiles(const PixelRegion& region, uint64_t maxPixels);
 
 class WavefrontRenderer {
 public:
   // Loads the scene into `backend` and configures it for `settings`, with the paths in
-  // flight lowered to what the device can hold, and the image cut into tiles when its
+  // flight lowered to what the device can hold, and the region cut into tiles when its
   // accumulation does not fit the device at once.
   WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
-  // Traces samplesPerPixel samples of every pixel, calling progress(fraction) after each
-  // pass; tile after tile when there are several, each pixel's samples as without tiles, so
-  // the image is the same bit for bit. Accumulates onto earlier calls' samples (with several
-  // tiles, each call renders the image anew).
-  RenderStats render(const std::function<void(double)>& progress);
+  // Traces the samples [firstSample, sampleEnd()) of every pixel of the region (the
+  // settings') that are not traced yet, calling afterPass with the figures so far after
+  // each pass; when it returns false the render stops there, to go on by a later call
+  // (possibly after resume() in another process). With several tiles, tile after tile:
+  // each pixel's paths are the same as without tiles, so the image is the same bit for bit.
+  RenderStats render(const std::function<bool(const RenderStats&)>& afterPass);
+  // How many tiles the region is rendered in (1 when it fits the device at once).
+  size_t tileCount() const { return tiles_.size(); }
 
   // Progressive rendering (the viewer): runs whole passes, continuing where the last one
   // stopped, until `budgetSeconds` is spent (at least one pass) or every pixel has
@@ -64,11 +61,23 @@ public:
   // Samples every pixel has so far (some pixels may have one more, mid-pass).
   uint32_t samplesPerPixelDone() const;
 
-  // Per-pixel mean radiance and the variance of that mean, from the samples so far. With
-  // several tiles, the image render() put together, handed over once.
+  // Per-pixel mean radiance and the variance of that mean, from the samples so far, over the
+  // region rendered.
   RadianceImage image();
-  // How many tiles the image is rendered in (1 when it fits the device at once).
-  size_t tileCount() const { return tiles_.size(); }
+  // The same from an accumulation read earlier (accumulation()).
+  RadianceImage imageOf(const Accumulation& accumulation) const;
+
+  // Where a render stands, for a checkpoint: the paths traced so far in render order (path
+  // k is sample k / pixels of region pixel k % pixels, counted from sample 0; with tiles,
+  // each tile's paths in that order after the tiles before it) and the per-pixel sums they
+  // were accumulated into. Paths [firstSample * pixels, pathsDone()) are in the sums. A render
+  // in tiles has no checkpoints: accumulation() and resume() require a single tile.
+  uint64_t pathsDone() const { return pathsDone_; }
+  uint64_t pathsEnd() const;
+  Accumulation accumulation();
+  // Continues a render from a checkpoint's state, made by a renderer of the same scene and
+  // settings (the sums are loaded as they were, so the render goes on bit for bit).
+  void resume(const Accumulation& accumulation, uint64_t pathsDone);
 
 private:
   void runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats);
@@ -77,17 +86,21 @@ private:
   void configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
   // Points the backend at tile `index` with an empty accumulation.
   void configureTile(size_t index);
-  // The current tile's mean and variance from its accumulation.
-  RadianceImage tileImage();
+  // The first path of tile `index` in render order, and the one after its last.
+  uint64_t tileStart(size_t index) const;
+  uint64_t tileEnd(size_t index) const;
+  // Copies the current tile's sums into the region's (tiledSums_).
+  void storeTile();
 
   Backend& backend_;
   RenderSettings settings_;
-  gpu::RenderParams params_;
-  std::vector<Tile> tiles_;
-  size_t tile_ = 0;  // the one configured
-  RadianceImage image_;  // with several tiles: the finished ones, put together
-  // Paths traced in the current tile since it was configured, in render order: path k is
-  // sample k / pixels of pixel k % pixels of the tile.
+  gpu::RenderParams params_;  // params_.region and image.z are the current tile's
+  std::vector<PixelRegion> tiles_;
+  size_t tile_ = 0;            // the one configured
+  Accumulation tiledSums_;     // with several tiles: the region's sums, finished tiles filled in
+  // Paths traced, in render order: path k is sample k / pixels of region pixel k % pixels.
+  // A render starts at path firstPath_ (sample settings.firstSample).
+  uint64_t firstPath_ = 0;
   uint64_t pathsDone_ = 0;
   // Measured seconds per path of the last progressive pass; 0 before the first.
   double secondsPerPath_ = 0.0;

@@ -9,7 +9,8 @@
 namespace wp::gltf {
 
 // Every extension the loader implements. Add an entry here when the loader learns one.
-inline constexpr std::array<std::string_view, 4> kSupportedExtensions{
+inline constexpr std::array<std::string_view, 5> kSupportedExtensions{
+    "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
     "KHR_materials_transmission",

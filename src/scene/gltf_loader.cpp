@@ -36,12 +36,15 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/log.h"
+#include "scene/default_lighting.h"
 #include "scene/gltf_animation.h"
 #include "scene/gltf_camera_extras.h"
+#include "scene/gltf_cameras.h"
 #include "scene/gltf_context.h"
 #include "scene/gltf_extensions.h"
 #include "scene/gltf_extras.h"
 #include "scene/gltf_file.h"
+#include "scene/gltf_lights.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_mesh.h"
 #include "scene/gltf_nodes.h"
@@ -62,42 +65,41 @@ bool isInvertible(const glm::mat4& world) {
   return det != 0.0 && std::isfinite(det);
 }
 
-bool hasArea(const Mesh& mesh, size_t triangle) {
-  const glm::vec3& a = mesh.positions[mesh.indices[3 * triangle]];
-  const glm::vec3& b = mesh.positions[mesh.indices[3 * triangle + 1]];
-  const glm::vec3& c = mesh.positions[mesh.indices[3 * triangle + 2]];
-  return glm::length(glm::cross(b - a, c - a)) > 0.0f;
-}
-
 class SceneBuilder {
 public:
-  SceneBuilder(const gltf::Context& ctx, bool defaultSky)
-      : ctx_(ctx), defaultSky_(defaultSky), sceneMeshOf_(ctx.model.meshes.size(), kNotConverted),
+  SceneBuilder(const gltf::Context& ctx, const LoadOptions& options)
+      : ctx_(ctx), options_(options), sceneMeshOf_(ctx.model.meshes.size(), kNotConverted),
         animatedNode_(ctx.model.nodes.size(), false) {}
 
   Scene build() {
     scene_.materials = gltf::convertMaterials(ctx_, scene_.textures);
     defaultMaterial_ = static_cast<uint32_t>(scene_.materials.size());
+    fileLights_ = gltf::readLights(ctx_);
     readAnimationData();
-    gltf::walkDefaultScene(ctx_, [this](size_t node, const glm::mat4& world) { visit(node, world); });
+    const std::optional<size_t> sceneIndex = gltf::sceneToWalk(ctx_, options_.scene);
+    gltf::walkScene(ctx_, sceneIndex, [this](size_t node, const glm::mat4& world) { visit(node, world); });
     if (animation_) {
       scene_.animation = animation_;
       // Skins and the default morph weights shape the rest pose too.
       scene_ = poseScene(scene_, std::nullopt);
     }
     if (scene_.instances.empty() && scene_.spheres.empty() && scene_.planes.empty()) {
+      const std::string which = options_.scene ? "scene " + std::to_string(*options_.scene) : "the default scene";
       gltf::fail(ctx_, "",
-                 "nothing to render: the default scene has no triangles, spheres or planes; add a triangle mesh or a "
-                 "wavepath shape");
+                 "nothing to render: " + which + " has no triangles, spheres or planes; add a triangle mesh or a "
+                 "wavepath shape" + (ctx_.model.scenes.size() > 1 ? ", or pick another scene with --scene N" : ""));
+    }
+    if (!options_.camera.empty() && !scene_.hasCamera) {
+      gltf::fail(ctx_, "", "--camera " + gltf::oneLine(options_.camera) + " names no camera of " +
+                               (sceneIndex ? "scene " + std::to_string(*sceneIndex) : std::string("the file")) + " (" +
+                               gltf::cameraList(ctx_) + "); give a camera's index or name");
     }
     if (usesDefaultMaterial()) scene_.materials.push_back(gltf::defaultMaterial());
-    if (!scene_.hasCamera) {
-      scene_.camera = frameScene(scene_);
-      note(ctx_.file + " has no camera: looking at the whole scene from +z with a 45 degree vertical field of view");
-    }
-    if (defaultSky_ && !hasEmitters()) {
-      scene_.sky = makeEnvironmentMap(1, 1, {glm::vec3(1.0f)});
-      note(ctx_.file + " has no emissive triangles: lighting it with a constant white sky");
+    if (!scene_.hasCamera) scene_.camera = frameScene(scene_);
+    if (options_.defaultSky) {
+      const DefaultLighting lighting = chooseDefaultLighting(scene_, ctx_.file);
+      if (lighting.whiteSky) scene_.sky = makeEnvironmentMap(1, 1, {glm::vec3(kDefaultSkyRadiance)});
+      note(lighting.note);
     }
     return std::move(scene_);
   }
@@ -173,6 +175,7 @@ private:
     }
     if (node.mesh != -1) addInstance(where, index, world);
     if (node.camera != -1) addCamera(where, index, world);
+    if (const std::optional<size_t> light = gltf::nodeLight(ctx_, index)) addLight(where, index, *light, world);
     if (const std::optional<gltf::ShapeSpec> shape = gltf::readShape(ctx_, index)) {
       addShape(where, index, *shape, world);
     }
@@ -260,34 +263,11 @@ private:
       gltf::fail(ctx_, nodeWhere,
                  "camera " + gltf::missingIndex(index, cameraCount, "cameras") + "; re-export the file");
     }
-    if (scene_.hasCamera) return;  // the first perspective camera of the walk wins
-    const tinygltf::Camera& camera = ctx_.model.cameras[static_cast<size_t>(index)];
-    const std::string where = nodeWhere + ": " + gltf::describe("camera", static_cast<size_t>(index), camera.name);
-    if (camera.type != "perspective") {
-      const std::string type = gltf::oneLine(camera.type);
-      return gltf::warnAt(ctx_, where, "'" + type + "' cameras are not supported; skipped");
-    }
-    const double yfov = camera.perspective.yfov;
-    const double aspectRatio = camera.perspective.aspectRatio;
-    if (!(yfov > 0.0 && yfov < std::numbers::pi)) {
-      gltf::fail(ctx_, where, "yfov must be between 0 and pi radians; fix the camera");
-    }
-    if (!(aspectRatio >= 0.0) || !std::isfinite(aspectRatio)) {
-      gltf::fail(ctx_, where, "aspectRatio must be a number > 0; fix the camera");
-    }
-    const std::optional<Camera> result =
-        cameraFromNode(world, static_cast<float>(yfov), static_cast<float>(aspectRatio));
-    if (!result) {
-      gltf::fail(ctx_, where, "the node's transform collapses the view or up direction; fix the node's scale");
-    }
-    scene_.camera = *result;
-    scene_.camera.optics = gltf::readCameraOptics(ctx_, static_cast<size_t>(index));
+    // The first camera of the walk wins, or the first that --camera names.
+    if (scene_.hasCamera || !gltf::cameraSelected(ctx_, options_.camera, static_cast<size_t>(index), node)) return;
+    scene_.camera = gltf::convertCamera(ctx_, static_cast<size_t>(index), nodeWhere, world);
     scene_.hasCamera = true;
-    if (animation_) {
-      animation_->cameraNode = static_cast<int>(node);
-      animation_->cameraYfov = static_cast<float>(yfov);
-      animation_->cameraAspectRatio = static_cast<float>(aspectRatio);
-    }
+    if (animation_) animation_->cameraNode = static_cast<int>(node);
   }
 
   void addShape(const std::string& where, size_t node, const gltf::ShapeSpec& shape, const glm::mat4& world) {
@@ -306,6 +286,14 @@ private:
       const glm::vec3 normal = glm::normalize(glm::transpose(glm::inverse(glm::mat3(world))) * glm::vec3(0, 1, 0));
       scene_.planes.push_back({normal, glm::dot(normal, glm::vec3(world[3])), material});
     }
+  }
+
+  void addLight(const std::string& where, size_t node, size_t light, const glm::mat4& world) {
+    if (!isInvertible(world)) return skipSingular(where, "light");
+    PunctualLight placed = fileLights_[light];
+    placed.lightToWorld = world;
+    scene_.lights.push_back(placed);
+    if (animation_) animation_->lightNodes.push_back(static_cast<uint32_t>(node));
   }
 
   void skipSingular(const std::string& where, const char* what) {
@@ -327,34 +315,12 @@ private:
     return false;
   }
 
-  // Emissive triangles with area, in a mesh that has an instance, or emissive shapes: an
-  // emissive sphere or plane lights the scene too, so it must not get the white sky.
-  bool hasEmitters() const {
-    const auto emissive = [this](uint32_t m) { return scene_.materials[m].isEmissive(); };
-    std::vector<bool> meshEmits(scene_.meshes.size(), false);
-    for (size_t i = 0; i < scene_.meshes.size(); ++i) {
-      const Mesh& mesh = scene_.meshes[i];
-      for (size_t t = 0; t < mesh.triangleCount() && !meshEmits[i]; ++t) {
-        meshEmits[i] = emissive(mesh.materials[t]) && hasArea(mesh, t);
-      }
-    }
-    for (const MeshInstance& instance : scene_.instances) {
-      if (meshEmits[instance.mesh]) return true;
-    }
-    for (const Sphere& sphere : scene_.spheres) {
-      if (emissive(sphere.material)) return true;
-    }
-    for (const Plane& plane : scene_.planes) {
-      if (emissive(plane.material)) return true;
-    }
-    return false;
-  }
-
   const gltf::Context& ctx_;
-  const bool defaultSky_;
+  const LoadOptions options_;
   Scene scene_;
   uint32_t defaultMaterial_ = 0;
   std::vector<int> sceneMeshOf_;  // glTF mesh -> index in scene_.meshes, kNotConverted or kNoTriangles
+  std::vector<PunctualLight> fileLights_;  // the file's KHR_lights_punctual lights, unplaced
   std::vector<size_t> morphTargets_;  // per glTF mesh
   std::vector<bool> animatedNode_;    // per glTF node: a channel moves it or an ancestor
   std::shared_ptr<SceneAnimation> animation_;  // null for a static scene
@@ -362,7 +328,7 @@ private:
 
 }  // namespace
 
-Scene loadScene(const std::filesystem::path& file, bool defaultSky) {
+Scene loadScene(const std::filesystem::path& file, const LoadOptions& options) {
   // The warnings of a large file are summed up before the render (or the error) comes.
   struct FlushWarnings {
     ~FlushWarnings() { flushWarnings(); }
@@ -370,7 +336,7 @@ Scene loadScene(const std::filesystem::path& file, bool defaultSky) {
   const tinygltf::Model model = gltf::parseGltfFile(file);
   const gltf::Context ctx{file.string(), model};
   gltf::checkExtensions(ctx);
-  return SceneBuilder(ctx, defaultSky).build();
+  return SceneBuilder(ctx, options).build();
 }
 
 }  // namespace wp

@@ -61,16 +61,32 @@ glm::vec3 readColor(const Context& ctx, const tinygltf::Material& material, cons
   return color;
 }
 
-// extras.wavepath.bsdf: "lambert" marks an ideal diffuse surface, which glTF cannot say (its
-// dielectric always has a specular coat); the Cornell box is Lambertian like its reference.
+// A material's extras.wavepath, both keys optional:
+//   "bsdf": "lambert" makes it ideal diffuse, which glTF cannot say (its dielectric always has
+//       a specular layer); the Cornell box is Lambertian like its reference.
+//   "diffuse": "lambert" (glTF's own, the default) or "disney": the base under glTF's
+//       specular layer; "disney" is the seed report's normalized Disney diffuse.
 Material::Bsdf readBsdf(const Context& ctx, const tinygltf::Material& material, const std::string& where) {
   if (!material.extras.Has("wavepath")) return Material::Bsdf::Gltf;
   const tinygltf::Value& extras = material.extras.Get("wavepath");
-  const tinygltf::Value& bsdf = extras.IsObject() && extras.Has("bsdf") ? extras.Get("bsdf") : tinygltf::Value();
-  if (!bsdf.IsString() || bsdf.Get<std::string>() != "lambert") {
-    fail(ctx, where, "a material's extras.wavepath must be {\"bsdf\": \"lambert\"}; fix the material's extras");
+  const auto text = [&](const char* key) {
+    return extras.IsObject() && extras.Has(key) && extras.Get(key).IsString() ? extras.Get(key).Get<std::string>()
+                                                                             : std::string("?");
+  };
+  const bool hasBsdf = extras.IsObject() && extras.Has("bsdf");
+  const bool hasDiffuse = extras.IsObject() && extras.Has("diffuse");
+  const size_t keys = extras.IsObject() ? extras.Keys().size() : 0;
+  const bool valid = extras.IsObject() && keys == size_t(hasBsdf) + size_t(hasDiffuse) &&
+                     (!hasBsdf || text("bsdf") == "lambert") &&
+                     (!hasDiffuse || text("diffuse") == "lambert" || text("diffuse") == "disney") &&
+                     !(hasBsdf && hasDiffuse);
+  if (!valid) {
+    fail(ctx, where,
+         "a material's extras.wavepath must be {\"bsdf\": \"lambert\"} or {\"diffuse\": \"lambert\" or \"disney\"}; "
+         "fix the material's extras");
   }
-  return Material::Bsdf::Lambert;
+  if (hasBsdf) return Material::Bsdf::Lambert;
+  return hasDiffuse && text("diffuse") == "disney" ? Material::Bsdf::GltfDisneyDiffuse : Material::Bsdf::Gltf;
 }
 
 Material convert(const Context& ctx, const tinygltf::Material& material, size_t index) {

@@ -164,19 +164,33 @@ std::vector<int> rootNodes(const tinygltf::Model& model) {
 
 }  // namespace
 
-void walkDefaultScene(const Context& ctx, const std::function<void(size_t node, const glm::mat4& world)>& visit) {
+std::optional<size_t> sceneToWalk(const Context& ctx, std::optional<size_t> chosen) {
   const tinygltf::Model& model = ctx.model;
-  Walker walker(ctx, visit);
-  if (model.scenes.empty() && model.defaultScene == -1) {
-    walker.run(rootNodes(model), "");
-    return;
+  if (chosen) {
+    if (*chosen >= model.scenes.size()) {
+      fail(ctx, "", "--scene " + std::to_string(*chosen) + ": scene " +
+                        missingIndex(static_cast<long long>(*chosen), model.scenes.size(), "scenes") +
+                        "; scenes count from 0");
+    }
+    return chosen;
   }
+  if (model.scenes.empty() && model.defaultScene == -1) return std::nullopt;
   const int scene = model.defaultScene == -1 ? 0 : model.defaultScene;
   if (scene < 0 || static_cast<size_t>(scene) >= model.scenes.size()) {
     fail(ctx, "", "the default scene " + missingIndex(scene, model.scenes.size(), "scenes") + "; fix \"scene\"");
   }
-  const tinygltf::Scene& chosen = model.scenes[static_cast<size_t>(scene)];
-  walker.run(chosen.nodes, describe("scene", static_cast<size_t>(scene), chosen.name));
+  return static_cast<size_t>(scene);
+}
+
+void walkScene(const Context& ctx, std::optional<size_t> scene,
+               const std::function<void(size_t node, const glm::mat4& world)>& visit) {
+  Walker walker(ctx, visit);
+  if (!scene) {
+    walker.run(rootNodes(ctx.model), "");
+    return;
+  }
+  const tinygltf::Scene& chosen = ctx.model.scenes[*scene];
+  walker.run(chosen.nodes, describe("scene", *scene, chosen.name));
 }
 
 }  // namespace wp::gltf

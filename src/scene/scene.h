@@ -18,10 +18,14 @@ struct SceneAnimation;
 
 // A glTF metallic-roughness material (defaults as in glTF), or an ideal diffuse one.
 struct Material {
-  enum class Bsdf { Gltf, Lambert };
+  // Gltf: glTF's metallic-roughness BRDF (a Lambertian base under the dielectric's specular
+  // layer); GltfDisneyDiffuse: the same with the seed report's Disney diffuse base
+  // (extras.wavepath.diffuse = "disney"); Lambert: ideal diffuse of albedo baseColor
+  // (extras.wavepath.bsdf = "lambert").
+  enum class Bsdf { Gltf, GltfDisneyDiffuse, Lambert };
 
   std::string name;
-  Bsdf bsdf = Bsdf::Gltf;     // Lambert: extras.wavepath.bsdf = "lambert", albedo baseColor
+  Bsdf bsdf = Bsdf::Gltf;
   glm::vec3 baseColor{1.0f};  // linear RGB base colour
   float alpha = 1.0f;
   float metallic = 1.0f;
@@ -105,6 +109,27 @@ struct Plane {
   uint32_t material = 0;
 };
 
+// A glTF KHR_lights_punctual light, placed by its node: it sits at the node's origin and
+// points down the node's -Z axis (spot, directional).
+struct PunctualLight {
+  enum class Kind { Point, Spot, Directional };
+
+  std::string name;
+  Kind kind = Kind::Point;
+  // Radiant intensity in W/sr (point, spot) or irradiance in W/m^2 (directional), the units
+  // of emitted radiance times sr or m^2: the file's colour times its candela or lux over 683,
+  // as Blender's importer converts them, so a file lit by lamps and emitters keeps its balance.
+  glm::vec3 intensity{1.0f / 683.0f};
+  float innerConeAngle = 0.0f;        // spot, radians
+  float outerConeAngle = 0.7853982f;  // spot, radians (glTF's default pi / 4)
+  glm::mat4 lightToWorld{1.0f};       // its node's world transform
+  std::optional<glm::mat4> lightToWorldAtClose;  // motion blur, as for MeshInstance
+
+  glm::vec3 position() const { return glm::vec3(lightToWorld[3]); }
+  // Where it points (spot, directional): the node's -Z, unit (the node's scale does not count).
+  glm::vec3 direction() const { return glm::normalize(-glm::vec3(lightToWorld[2])); }
+};
+
 // Physical camera settings from the glTF camera's extras or the command line; 0 means unset.
 struct CameraOptics {
   float fNumber = 0.0f;        // 0: a pinhole (everything sharp)
@@ -124,6 +149,11 @@ struct Camera {
   float yfov = 0.7853982f;               // vertical field of view in radians
   float aspectRatio = 0.0f;              // from the file; 0 = use the image's
   CameraOptics optics;
+  // A glTF orthographic camera: parallel rays along `forward` from a view rectangle
+  // 2 * orthographicHalfHeight tall (glTF ymag) centred on `position`, as wide as the image's
+  // aspect makes it; yfov and the optics do not apply.
+  bool orthographic = false;
+  float orthographicHalfHeight = 0.0f;
 };
 
 struct Scene {
@@ -133,6 +163,7 @@ struct Scene {
   std::vector<MeshInstance> instances;
   std::vector<Sphere> spheres;
   std::vector<Plane> planes;
+  std::vector<PunctualLight> lights;
   Camera camera;
   bool hasCamera = false;           // false: the camera was framed automatically
   // The sky seen by rays that leave the scene: an equirectangular radiance map (1x1 is a

@@ -49,9 +49,8 @@ struct SceneAnimation {
   std::vector<uint32_t> instanceNodes;  // per Scene::instances entry, the node placing it
   std::vector<uint32_t> sphereNodes;    // per Scene::spheres entry
   std::vector<float> sphereRadii;       // per Scene::spheres entry
+  std::vector<uint32_t> lightNodes;     // per Scene::lights entry
   int cameraNode = -1;                  // -1: the camera does not come from a node
-  float cameraYfov = 0.0f;
-  float cameraAspectRatio = 0.0f;
   std::vector<Skin> skins;
   std::vector<DeformingMesh> deformingMeshes;
   double duration = 0.0;  // the last keyframe time of all animations, seconds
@@ -59,13 +58,13 @@ struct SceneAnimation {
 
 // The scene at `seconds` (every animation sampled there, clamped to its keyframes), or in
 // its rest pose (no channel applied) without a time: instance and sphere transforms, the
-// camera when it sits on a node, and the vertices of deforming meshes. Instances, meshes
+// camera when it sits on a node, punctual lights, and the vertices of deforming meshes. Instances, meshes
 // and spheres keep their order and count, so every pose maps one to one onto the others.
 // Planes keep their rest pose. A scene without animation data is returned unchanged.
 Scene poseScene(const Scene& scene, std::optional<double> seconds);
 
 // The scene as a camera sees it with its shutter open from `open` for `shutter` seconds:
-// posed at `open`, and every instance and sphere that moves meanwhile carries its transform at
+// posed at `open`, and every instance, sphere and light that moves meanwhile carries its transform at
 // shutter close for motion blur (objectToWorldAtClose). Deforming meshes keep their vertices
 // at `open`, and the camera its place. With shutter <= 0 it is poseScene(scene, open).
 Scene poseSceneOverShutter(const Scene& scene, double open, double shutter);

@@ -77,15 +77,20 @@ Scene poseScene(const Scene& scene, std::optional<double> seconds) {
   for (size_t i = 0; i < posed.spheres.size(); ++i) {
     posed.spheres[i].objectToWorld = glm::scale(glm::mat4(world[a.sphereNodes[i]]), glm::vec3(a.sphereRadii[i]));
   }
+  for (size_t i = 0; i < posed.lights.size(); ++i) {
+    posed.lights[i].lightToWorld = glm::mat4(world[a.lightNodes[i]]);
+  }
   if (a.cameraNode >= 0) {
-    const std::optional<Camera> camera =
-        cameraFromNode(glm::mat4(world[static_cast<size_t>(a.cameraNode)]), a.cameraYfov, a.cameraAspectRatio);
+    // The lens stays the scene's; only where it is and where it looks follow the node.
+    const std::optional<Camera> camera = cameraFromNode(glm::mat4(world[static_cast<size_t>(a.cameraNode)]),
+                                                        scene.camera.yfov, scene.camera.aspectRatio);
     if (!camera) {
       throw Error("at " + std::to_string(seconds.value_or(0.0)) +
                   " s the camera node's transform collapses the view or up direction; fix the camera's animation");
     }
-    posed.camera = *camera;
-    posed.camera.optics = scene.camera.optics;
+    posed.camera.position = camera->position;
+    posed.camera.forward = camera->forward;
+    posed.camera.up = camera->up;
   }
   return posed;
 }
@@ -104,6 +109,11 @@ Scene poseSceneOverShutter(const Scene& scene, double open, double shutter) {
   for (size_t i = 0; i < posed.spheres.size(); ++i) {
     if (closed.spheres[i].objectToWorld != posed.spheres[i].objectToWorld) {
       posed.spheres[i].objectToWorldAtClose = closed.spheres[i].objectToWorld;
+    }
+  }
+  for (size_t i = 0; i < posed.lights.size(); ++i) {
+    if (closed.lights[i].lightToWorld != posed.lights[i].lightToWorld) {
+      posed.lights[i].lightToWorldAtClose = closed.lights[i].lightToWorld;
     }
   }
   return posed;

@@ -106,19 +106,25 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
   }
   float half = glm::radians(scene.camera.yawDegrees) * 0.5f;
   size_t cameraNode = scene.meshes.size();
+  size_t rootCount = scene.withCamera ? cameraNode + 1 : cameraNode;
   std::ostringstream json;
   json.precision(9);
   json << "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_materials_emissive_strength\","
        << "\"KHR_materials_ior\",\"KHR_materials_transmission\",\"KHR_materials_volume\"],"
        << "\"scene\":0,\"scenes\":[{\"nodes\":[";
-  for (size_t i = 0; i <= cameraNode; ++i) {
+  for (size_t i = 0; i < rootCount; ++i) {
     json << (i ? "," : "") << i;
   }
-  json << "]}],\"nodes\":[" << nodes.str() << (cameraNode ? "," : "") << "{\"camera\":0,\"translation\":["
-       << scene.camera.position.x << "," << scene.camera.position.y << "," << scene.camera.position.z
-       << "],\"rotation\":[0," << std::sin(half) << ",0," << std::cos(half) << "]}],"
-       << "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":" << scene.camera.yfovRadians
-       << ",\"znear\":0.001}}],\"meshes\":[" << meshes.str() << "],\"materials\":[" << materials.str()
+  json << "]}],\"nodes\":[" << nodes.str();
+  if (scene.withCamera) {
+    json << (cameraNode ? "," : "") << "{\"camera\":0,\"translation\":[" << scene.camera.position.x << ","
+         << scene.camera.position.y << "," << scene.camera.position.z << "],\"rotation\":[0," << std::sin(half)
+         << ",0," << std::cos(half) << "]}],\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":"
+         << scene.camera.yfovRadians << ",\"znear\":0.001}}],";
+  } else {
+    json << "],";
+  }
+  json << "\"meshes\":[" << meshes.str() << "],\"materials\":[" << materials.str()
        << "],\"accessors\":[" << accessors.str() << "],\"bufferViews\":[" << views.str()
        << "],\"buffers\":[{\"byteLength\":" << buffer.size()
        << ",\"uri\":\"data:application/octet-stream;base64," << base64(buffer) << "\"}]}";

@@ -41,6 +41,7 @@ struct TestScene {
   std::vector<TestMaterial> materials;
   std::vector<TestMesh> meshes;
   TestCamera camera;
+  bool withCamera = true;  // false: the file has no camera (wavepath frames it itself)
 };
 
 // Standard base64 (RFC 4648) of `bytes`, for data: URIs.

@@ -1,16 +1,21 @@
 // Runs wavepath in a subprocess for end-to-end tests.
 #include "support/run_wavepath.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace wp::test {
 namespace {
@@ -64,6 +69,70 @@ void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code)
   EXPECT_NE(lastLine.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line: " << r.err;
 }
+
+WavepathProcess startWavepath(const std::vector<std::string>& args) {
+  WavepathProcess process;
+  process.dir = scratchDirectory("process");
+  const std::string out = (process.dir / "out").string(), err = (process.dir / "err").string();
+  std::vector<std::string> argv = {WAVEPATH_EXE};
+  argv.insert(argv.end(), args.begin(), args.end());
+  process.pid = ::fork();
+  if (process.pid == 0) {
+    ::setenv("WAVEPATH_VALIDATION", "1", 1);
+    ::setenv("WAVEPATH_CACHE_DIR", WAVEPATH_TEST_CACHE_DIR, 1);
+    int in = ::open("/dev/null", O_RDONLY);
+    int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(in, 0);
+    ::dup2(o, 1);
+    ::dup2(e, 2);
+    std::vector<char*> pointers;
+    for (std::string& a : argv) pointers.push_back(a.data());
+    pointers.push_back(nullptr);
+    ::execv(pointers[0], pointers.data());
+    ::_exit(127);
+  }
+  return process;
+}
+
+bool WavepathProcess::ended() {
+  if (!reaped && ::waitpid(pid, &status, WNOHANG) == pid) reaped = true;
+  return reaped;
+}
+
+RunResult waitWavepath(WavepathProcess& process, int timeoutSeconds) {
+  RunResult result;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeoutSeconds);
+  int& status = process.status;
+  while (!process.ended()) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(process.pid, SIGKILL);
+      ::waitpid(process.pid, &status, 0);
+      process.reaped = true;
+      result.err = "(killed after " + std::to_string(timeoutSeconds) + " s)\n";
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = slurp(process.dir / "out");
+  result.err += slurp(process.dir / "err");
+  return result;
+}
+
+RunResult runShell(const std::string& command) {
+  RunResult result;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) result.out.append(buffer, n);
+  const int status = ::pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::filesystem::path wavepathExecutable() { return WAVEPATH_EXE; }
 
 std::filesystem::path scratchDirectory(const std::string& name) {
   static int counter = 0;

@@ -24,6 +24,26 @@ RunResult runWavepath(const std::vector<std::string>& args, const std::vector<st
 // code `code` (1: bad input or device, 2: bad flags).
 void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code = 1);
 
+// A wavepath started in the background (as runWavepath starts it, without the timeout
+// wrapper, so signals reach wavepath itself).
+struct WavepathProcess {
+  int pid = -1;
+  std::filesystem::path dir;  // holds its out and err
+  // Whether it has exited (then reaped, its status kept for waitWavepath).
+  bool ended();
+  bool reaped = false;
+  int status = 0;
+};
+WavepathProcess startWavepath(const std::vector<std::string>& args);
+// Waits for it to end (killing it after timeoutSeconds) and returns what it left.
+RunResult waitWavepath(WavepathProcess& process, int timeoutSeconds = 600);
+
+// Runs a shell command line; its stdout and stderr together end up in `out`.
+RunResult runShell(const std::string& command);
+
+// The wavepath executable under test.
+std::filesystem::path wavepathExecutable();
+
 // A fresh empty directory for one test's files.
 std::filesystem::path scratchDirectory(const std::string& name);
 

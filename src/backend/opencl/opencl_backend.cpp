@@ -247,4 +247,10 @@ Accumulation OpenClBackend::readAccumulation() {
   return result;
 }
 
+void OpenClBackend::writeAccumulation(const Accumulation& accumulation) {
+  std::vector<glm::vec4> both = accumulationBuffer(accumulation, pixelCount_);
+  CL_CHECK(clEnqueueWriteBuffer(context_->queue, accumulation_.handle(), CL_TRUE, 0, both.size() * sizeof(glm::vec4),
+                                both.data(), 0, nullptr, nullptr));
+}
+
 }  // namespace wp

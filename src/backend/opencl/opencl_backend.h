@@ -43,6 +43,7 @@ public:
   void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
+  void writeAccumulation(const Accumulation& accumulation) override;
 
 private:
   // Builds the program and kernels with (`motion`) or without WP_MOTION_BLUR.

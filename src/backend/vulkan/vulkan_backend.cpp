@@ -8,6 +8,7 @@
 #include "backend/vulkan/vk_check.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
+#include "shaders/common/ggx_albedo_table.h"
 #include "spirv/accumulate_spv.h"
 #include "spirv/advance_spv.h"
 #include "spirv/connect_motion_spv.h"
@@ -51,7 +52,7 @@ SpirvCode spirvFor(Kernel kernel, bool motion) {
 
 VkDescriptorType descriptorType(uint32_t binding) {
   switch (binding) {
-    case WP_BINDING_PARAMS: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case WP_BINDING_PARAMS: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     case WP_BINDING_NODES:
     case WP_BINDING_TRIANGLES:
     case WP_BINDING_INSTANCES:
@@ -66,15 +67,19 @@ VkDescriptorType descriptorType(uint32_t binding) {
     case WP_BINDING_TEXELS:
     case WP_BINDING_RAYS_READ:
     case WP_BINDING_HITS_READ:
-    case WP_BINDING_SHADOW_RAYS_READ: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    case WP_BINDING_SHADOW_RAYS_READ:
+    case WP_BINDING_BSDF_TABLES: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     default: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
   }
 }
 
 // Bytes of one texel of the view a texel-buffer binding is read through (bindings.glsl):
-// the sky's distributions are single floats, everything else vec4s.
+// the sky's distributions and the BSDF tables are single floats, everything else vec4s.
 uint64_t texelBytes(uint32_t binding) {
-  return binding == WP_BINDING_ENV_MARGINAL || binding == WP_BINDING_ENV_CONDITIONAL ? 4 : 16;
+  return binding == WP_BINDING_ENV_MARGINAL || binding == WP_BINDING_ENV_CONDITIONAL ||
+                 binding == WP_BINDING_BSDF_TABLES
+             ? 4
+             : 16;
 }
 
 // Storage for the queues, also read as texels by the next stage.
@@ -120,6 +125,8 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
     VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
   }
   countersReadback_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  bsdfTables_ = VulkanBuffer(*context_, sizeof(gpu::kGgxAlbedo), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
+  bsdfTables_.upload(gpu::kGgxAlbedo, sizeof(gpu::kGgxAlbedo));
 }
 
 VulkanBackend::~VulkanBackend() {
@@ -140,6 +147,7 @@ VulkanBackend::~VulkanBackend() {
   vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
   // Buffers are members and release themselves before context_ is destroyed.
   sceneBuffers_ = {};
+  bsdfTables_ = {};
   params_ = {};
   rays_ = {};
   hits_ = {};
@@ -267,7 +275,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   checkPathStateFits(context_->limits, 2ull * maxPaths * sizeof(gpu::PathRay), params.image.z,
                      pathStateBytes(maxPaths) + accumulationBytes);
   vkDeviceWaitIdle(context_->device);
-  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memcpy(params_.mapped(), &params, sizeof(params));
 
   bool resized = rays_.handle() == VK_NULL_HANDLE || hits_.size() < maxPaths * sizeof(gpu::HitRecord);
@@ -297,6 +305,7 @@ void VulkanBackend::writeDescriptors() {
   buffers[WP_BINDING_PATH_RADIANCE] = &pathRadiance_;
   buffers[WP_BINDING_COUNTERS] = &counters_;
   buffers[WP_BINDING_ACCUM] = &accumulation_;
+  buffers[WP_BINDING_BSDF_TABLES] = &bsdfTables_;
   for (size_t i = 0; i < kSceneBindings.size(); ++i) {
     buffers[kSceneBindings[i]] = &sceneBuffers_[i];
   }
@@ -444,6 +453,11 @@ Accumulation VulkanBackend::readAccumulation() {
   result.sum.assign(both.begin(), both.begin() + pixelCount_);
   result.sumSquares.assign(both.begin() + pixelCount_, both.end());
   return result;
+}
+
+void VulkanBackend::writeAccumulation(const Accumulation& accumulation) {
+  std::vector<glm::vec4> both = accumulationBuffer(accumulation, pixelCount_);
+  accumulation_.upload(both.data(), both.size() * sizeof(glm::vec4));
 }
 
 }  // namespace wp

@@ -28,6 +28,7 @@ public:
   void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
+  void writeAccumulation(const Accumulation& accumulation) override;
 
 private:
   // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
@@ -57,6 +58,7 @@ private:
   // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL, then WP_BINDING_TRIANGLE_SHADING ..
   // WP_BINDING_TEXELS.
   std::array<VulkanBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
+  VulkanBuffer bsdfTables_;  // gpu::kGgxAlbedo (energy_compensation.h)
   VulkanBuffer params_;
   VulkanBuffer rays_;
   VulkanBuffer hits_;

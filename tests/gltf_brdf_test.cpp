@@ -1,0 +1,128 @@
+// End-to-end renders of glTF's metallic-roughness BRDF on both backends: the white furnace of
+// its dielectric and metal, and the Cornell box written as exporters write a matte surface,
+// against Cycles' Lambertian reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "image/image_io.h"
+#include "support/image_stats.h"
+#include "support/run_wavepath.h"
+
+namespace wp::test {
+namespace {
+
+using Backends = ::testing::TestWithParam<std::string>;
+
+// A unit sphere with one material under a constant white sky, seen head-on by an orthographic
+// camera whose view is the sphere's bounding square. A convex sphere never sees itself, so
+// each pixel is the material's directional albedo at that pixel's angle times the sky's 1.
+std::string furnaceScene(double metallic, double roughness) {
+  char material[160];
+  std::snprintf(material, sizeof material,
+                R"({"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": %g,
+                     "roughnessFactor": %g}})",
+                metallic, roughness);
+  return std::string(R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"extras": {"wavepath": {"shape": "sphere", "radius": 1.0, "material": 0}}},
+            {"camera": 0, "translation": [0, 0, 5]}],
+  "cameras": [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}],
+  "materials": [)") + material + "]}";
+}
+
+struct FurnaceResult {
+  double mean = 0.0;
+  double standardError = 0.0;
+};
+
+// The mean over the pixels whose whole footprint lies on the sphere's disc, and its error.
+FurnaceResult furnace(const std::string& backend, double metallic, double roughness) {
+  const std::string name = "furnace-" + backend + "-" + std::to_string(int(metallic)) + "-" +
+                           std::to_string(int(std::lround(roughness * 100)));
+  const std::filesystem::path dir = scratchDirectory(name);
+  std::ofstream(dir / "scene.gltf") << furnaceScene(metallic, roughness);
+  // Pixels wholly on the disc reach out to 97% of its radius at 64x64, so the grazing ring
+  // where rough single scattering loses most is in the mean (at 20x20 a fifth of it was not).
+  const int size = 64;
+  const RunResult r = runWavepath({"render", (dir / "scene.gltf").string(), "-o", (dir / "out.exr").string(),
+                                   "--width", std::to_string(size), "--height", std::to_string(size), "--spp", "64",
+                                   "--backend", backend});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  const RadianceImage image = readExr(dir / "out.exr");
+  FurnaceResult result;
+  double varianceSum = 0.0;
+  int count = 0;
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      // The pixel's corner farthest from the centre, in units of the radius.
+      const double fx = std::max(std::abs(2.0 * x / size - 1.0), std::abs(2.0 * (x + 1) / size - 1.0));
+      const double fy = std::max(std::abs(2.0 * y / size - 1.0), std::abs(2.0 * (y + 1) / size - 1.0));
+      if (fx * fx + fy * fy >= 1.0) continue;
+      const size_t i = size_t(y) * size + x;
+      result.mean += image.mean[i].g;
+      varianceSum += image.variance[i].g;
+      ++count;
+    }
+  }
+  result.mean /= count;
+  result.standardError = std::sqrt(varianceSum) / count;
+  return result;
+}
+
+// The white furnace of glTF's materials: a dielectric with base colour 1 at roughness 0,
+// 0.25, 0.5 and 1, and a metal of F0 = 1 at roughness 0.5 and 1. Energy compensation gives back
+// what single-scattering GGX loses, so each reflects 1 to within the interpolation error of
+// its albedo tables (bsdf_test): the test asks for at least 0.99, tighter than the [0.95, 1]
+// the issue asks for, because without the dielectric's compensation roughness 1 still gives
+// 0.953 here (without the metal's, about 0.4). Noise is below 1e-3 at 64 spp.
+TEST_P(Backends, WhiteFurnaceReflectsEverything) {
+  const struct {
+    double metallic, roughness;
+  } cases[] = {{0, 0}, {0, 0.25}, {0, 0.5}, {0, 1}, {1, 0.5}, {1, 1}};
+  for (const auto& c : cases) {
+    const FurnaceResult result = furnace(GetParam(), c.metallic, c.roughness);
+    std::printf("%s, roughness %.2f: reflects %.4f (standard error %.5f)\n", c.metallic > 0 ? "metal" : "dielectric",
+                c.roughness, result.mean, result.standardError);
+    SCOPED_TRACE((c.metallic > 0 ? "metal, roughness " : "dielectric, roughness ") + std::to_string(c.roughness));
+    EXPECT_GE(result.mean, 0.99);
+    EXPECT_LE(result.mean, 1.0 + 4.0 * result.standardError);
+  }
+}
+
+ImageMean cornellMean(const std::string& backend, const std::filesystem::path& scene, const std::string& name) {
+  const std::filesystem::path dir = scratchDirectory("cornell-" + name + "-" + backend);
+  const RunResult r = runWavepath({"render", scene.string(), "-o", (dir / "out.exr").string(), "--width", "64",
+                                   "--height", "64", "--spp", "128", "--max-depth", "8", "--backend", backend});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  return imageMean(readExr(dir / "out.exr"));
+}
+
+// tests/data/cornell-plain.gltf is the Cornell box as exporters write a matte wall
+// (metallicFactor 0, roughnessFactor 1, no extras); cornell-cycles-64.exr is Cycles' 4096-spp
+// Lambertian render of it box-averaged to 64x64 (tests/data/README.md). glTF's BRDF puts a weak
+// white specular layer over the Lambertian base, so each channel's mean over the image lies
+// within 5% of the reference (it renders at 1.016, 1.017, 1.019; the seed's Disney base gave
+// 0.69, 0.80, 0.85); the same box marked Lambertian (assets/cornell-box.gltf) is within 1%,
+// which is 10 standard errors of the render's mean and above the reference's own noise.
+TEST_P(Backends, PlainGltfCornellBoxIsWithinFivePercentOfTheLambertianReference) {
+  const RadianceImage reference = readExr(sourceDirectory() / "tests" / "data" / "cornell-cycles-64.exr");
+  glm::dvec3 expected(0.0);
+  for (const glm::vec3& pixel : reference.mean) expected += glm::dvec3(pixel) / double(reference.mean.size());
+  const ImageMean plain = cornellMean(GetParam(), sourceDirectory() / "tests" / "data" / "cornell-plain.gltf", "plain");
+  const ImageMean lambert = cornellMean(GetParam(), sourceDirectory() / "assets" / "cornell-box.gltf", "lambert");
+  for (int c = 0; c < 3; ++c) {
+    std::printf("channel %d: plain glTF %.4f, Lambertian %.4f of the reference\n", c, plain.mean[c] / expected[c],
+                lambert.mean[c] / expected[c]);
+    EXPECT_NEAR(plain.mean[c] / expected[c], 1.0, 0.05) << "channel " << c;
+    EXPECT_NEAR(lambert.mean[c] / expected[c], 1.0, 0.01) << "channel " << c;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backend, Backends, ::testing::Values("vulkan", "opencl"),
+                         [](const auto& info) { return info.param; });
+
+}  // namespace
+}  // namespace wp::test
