@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <tinyexr.h>
 
 #include "image/image_io.h"
 #include "support/gltf_writer.h"
@@ -138,6 +139,17 @@ TEST(HostileScene, BufferAndImageUrisMustNameRegularFilesOfAFewGiB) {
   }
 }
 
+TEST(HostileScene, AnImageBufferViewPastItsBufferIsAnError) {
+  // tinygltf hands an image's buffer view to the decoder without checking it against its
+  // buffer: fuzz_gltf found the PNG decoder reading past the buffer (ASan heap overflow).
+  Json scene = triangleScene();
+  scene["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 1000}});
+  scene["images"] = Json::array({{{"bufferView", 2}, {"mimeType", "image/png"}}});
+  scene["textures"] = Json::array({{{"source", 0}}});
+  scene["materials"][0]["pbrMetallicRoughness"] = {{"baseColorTexture", {{"index", 0}}}};
+  expectRefused(writeScene(scratchDirectory("hostile-image-view"), scene), "reaches past its buffer");
+}
+
 TEST(HostileScene, EmissionAboveTheRadianceLimitIsAnError) {
   // emissiveStrength 1e39 gave infinite radiance and a NaN variance, with exit 0.
   const fs::path dir = scratchDirectory("hostile-emission");
@@ -192,6 +204,34 @@ TEST_F(HostileSky, TruncatedExrIsAnError) {
     writeBytes(dir / "cut.exr", whole.substr(0, length));
     expectRefused(scene, "cut.exr", {"--sky", (dir / "cut.exr").string()});
   }
+}
+
+TEST_F(HostileSky, PizCompressedExrIsRefused) {
+  // tinyexr's PIZ decoder copies what a chunk's header says, past the chunk (fuzz_exr found a
+  // heap overflow): wavepath reads no PIZ file, damaged or not. This one is intact.
+  const float red[4] = {1, 2, 3, 4}, green[4] = {0, 0, 0, 0}, blue[4] = {5, 5, 5, 5};
+  const float* planes[3] = {blue, green, red};  // B, G, R: the order OpenEXR sorts them in
+  EXRChannelInfo channels[3] = {};
+  std::strcpy(channels[0].name, "B");
+  std::strcpy(channels[1].name, "G");
+  std::strcpy(channels[2].name, "R");
+  int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.num_channels = 3;
+  header.channels = channels;
+  header.pixel_types = types;
+  header.requested_pixel_types = types;
+  header.compression_type = TINYEXR_COMPRESSIONTYPE_PIZ;
+  EXRImage image;
+  InitEXRImage(&image);
+  image.images = reinterpret_cast<unsigned char**>(const_cast<float**>(planes));
+  image.width = 2;
+  image.height = 2;
+  image.num_channels = 3;
+  const char* err = nullptr;
+  ASSERT_EQ(SaveEXRImageToFile(&image, &header, (dir / "piz.exr").c_str(), &err), TINYEXR_SUCCESS);
+  expectRefused(scene, "PIZ-compressed", {"--sky", (dir / "piz.exr").string()});
 }
 
 TEST_F(HostileSky, TruncatedHdrOrARunOfZeroIsAnError) {

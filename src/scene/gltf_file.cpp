@@ -105,9 +105,25 @@ bool hasGlbExtension(const fs::path& file) {
 }
 
 // Decodes every image (file, data URI or .glb buffer view alike: tinygltf hands over the
-// bytes) into RGBA8; one that does not decode fails the load, naming it.
+// bytes) into RGBA8; one that does not decode fails the load, naming it. `user` is the model
+// being loaded: tinygltf hands an image's buffer view over without checking that the view
+// lies inside its buffer (it read past it, found by fuzz_gltf), so that is checked first.
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void*) {
+                 const unsigned char* bytes, int size, void* user) {
+  const std::string name = "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'");
+  if (image->bufferView >= 0) {
+    const auto* model = static_cast<const tinygltf::Model*>(user);
+    // tinygltf has checked both indices before calling.
+    const tinygltf::BufferView& view = model->bufferViews[static_cast<size_t>(image->bufferView)];
+    const size_t bufferSize = model->buffers[static_cast<size_t>(view.buffer)].data.size();
+    if (view.byteOffset > bufferSize || view.byteLength > bufferSize - view.byteOffset ||
+        view.byteLength > size_t(std::numeric_limits<int>::max())) {
+      *err += name + ": its buffer view " + std::to_string(image->bufferView) + " (bytes " +
+              std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) +
+              ") reaches past its buffer (" + std::to_string(bufferSize) + " bytes)";
+      return false;
+    }
+  }
   try {
     Rgba8Image decoded = decodePngOrJpeg(bytes, size_t(std::max(size, 0)));
     image->width = int(decoded.width);
@@ -118,8 +134,7 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     image->image = std::move(decoded.rgba);
     return true;
   } catch (const Error& e) {
-    *err += "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'") +
-            " cannot be decoded (" + e.what() + "); use PNG or JPEG";
+    *err += name + " cannot be decoded (" + e.what() + "); use PNG or JPEG";
     return false;
   }
 }
@@ -150,10 +165,10 @@ tinygltf::Model parseGltfFile(const fs::path& file) {
   }
 
   tinygltf::TinyGLTF parser;
-  parser.SetImageLoader(decodeImage, nullptr);
+  tinygltf::Model model;
+  parser.SetImageLoader(decodeImage, &model);
   UriReads uriReads;
   parser.SetFsCallbacks({uriExists, tinygltf::ExpandFilePath, readUri, tinygltf::WriteWholeFile, &uriReads});
-  tinygltf::Model model;
   std::string err;
   std::string warnings;
   const std::string baseDir = file.parent_path().string();
