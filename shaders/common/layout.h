@@ -15,7 +15,7 @@ WP_BEGIN
 // arguments. Read-only data is bound as uniform texel buffers (RGBA32UI): on lavapipe a
 // texel fetch is a SIMD gather while a storage-buffer load is a per-lane scalar loop, and
 // on GPUs it goes through the texture cache. Writes go through storage buffers.
-#define WP_BINDING_PARAMS 0         // RenderParams (uniform)
+#define WP_BINDING_PARAMS 0         // RenderParams (Vulkan: a read-only storage buffer, bindings.glsl)
 #define WP_BINDING_NODES 1          // BvhNode[] (texels): all bottom-level BVHs, then the top level
 #define WP_BINDING_TRIANGLES 2      // GpuTriangle[] (texels) in BVH leaf order
 #define WP_BINDING_INSTANCES 3      // GpuInstance[] (texels)
@@ -202,7 +202,7 @@ WP_STRUCT(GpuEnvironment)
   uvec4 size;      // x: width, y: height (texels); z, w: unused
 WP_STRUCT_END(GpuEnvironment)
 
-// Per-frame settings, a uniform buffer (OpenCL: a constant argument).
+// Per-frame settings, a read-only storage buffer (OpenCL: a constant argument).
 WP_STRUCT(RenderParams)
   ThinLens camera;      // optics and placement of the camera (thin_lens.h)
   GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
@@ -213,7 +213,8 @@ WP_STRUCT(RenderParams)
   uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
                         // z: WP_LIGHT_SELECTION_*, w: number of punctual (delta) lights
   uvec4 region;         // the pixels traced (image.z of them, row-major): x, y: first column
-                        // and row, z: width, w: height (the whole image unless --region)
+                        // and row, z: width, w: height (the whole image unless --region, or
+                        // a tile of it when it does not fit the device at once)
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

@@ -6,7 +6,11 @@
 layout(local_size_x = WP_WORKGROUP_SIZE) in;
 
 layout(push_constant) uniform Push { PassConstants pc; };
-layout(std140, binding = WP_BINDING_PARAMS) uniform Params { RenderParams params; };
+// A storage buffer, not a uniform buffer: lavapipe (Mesa 22.3) inlines uniform values into a
+// shader whose loops they bound (the lights, planes and aperture blades are counted in
+// RenderParams) by compiling it anew at every bind, and never frees the copies: a
+// 10,000-spp render grew by 100 MB (wavepath-bench-soak, docs/robustness.md).
+layout(std430, binding = WP_BINDING_PARAMS) readonly buffer Params { RenderParams params; };
 
 layout(binding = WP_BINDING_NODES) uniform usamplerBuffer nodeTexels;
 layout(binding = WP_BINDING_TRIANGLES) uniform usamplerBuffer triangleTexels;

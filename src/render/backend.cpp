@@ -9,17 +9,26 @@ namespace wp {
 namespace {
 
 template <typename T>
-SceneArray arrayOf(const std::vector<T>& v) {
-  return {v.data(), uint64_t(v.size()) * sizeof(T)};
+SceneArray arrayOf(const std::vector<T>& v, const char* name) {
+  return {v.data(), uint64_t(v.size()) * sizeof(T), name};
 }
 
 }  // namespace
 
 std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
   // In the order of kSceneBindings.
-  return {arrayOf(s.nodes),       arrayOf(s.triangles),      arrayOf(s.instances),      arrayOf(s.planes),
-          arrayOf(s.materials),   arrayOf(s.lights),         arrayOf(s.skyRadiance),    arrayOf(s.skyMarginal),
-          arrayOf(s.skyConditional), arrayOf(s.triangleShading), arrayOf(s.textures), arrayOf(s.texels)};
+  return {arrayOf(s.nodes, "BVH nodes"),
+          arrayOf(s.triangles, "triangles"),
+          arrayOf(s.instances, "instances"),
+          arrayOf(s.planes, "planes"),
+          arrayOf(s.materials, "materials"),
+          arrayOf(s.lights, "emissive triangles"),
+          arrayOf(s.skyRadiance, "sky texels"),
+          arrayOf(s.skyMarginal, "sky row distribution"),
+          arrayOf(s.skyConditional, "sky column distributions"),
+          arrayOf(s.triangleShading, "triangle shading"),
+          arrayOf(s.textures, "textures"),
+          arrayOf(s.texels, "texture texels")};
 }
 
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels) {

@@ -9,8 +9,8 @@ namespace wp::gltf {
 
 // Parses `file` (JSON .gltf with external or data: buffers, or binary .glb, told apart by
 // the "glTF" magic). Throws wp::Error with one line for a missing, unreadable or malformed
-// file or buffer; prints tinygltf's warnings with wp::warn, one per line. Images are not
-// decoded: wavepath does not use textures yet.
+// file, buffer or image (decoded to RGBA8 by decodePngOrJpeg); prints tinygltf's warnings
+// with wp::warn, one per line.
 tinygltf::Model parseGltfFile(const std::filesystem::path& file);
 
 }  // namespace wp::gltf

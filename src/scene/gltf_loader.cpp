@@ -330,6 +330,10 @@ private:
 }  // namespace
 
 Scene loadScene(const std::filesystem::path& file, const LoadOptions& options) {
+  // The warnings of a large file are summed up before the render (or the error) comes.
+  struct FlushWarnings {
+    ~FlushWarnings() { flushWarnings(); }
+  } flush;
   tinygltf::Model model = gltf::parseGltfFile(file);
   const gltf::Context ctx{file.string(), model};
   gltf::checkExtensions(ctx);
