@@ -1,6 +1,7 @@
-// Tests of how the loader reads glTF vertex data: sparse accessors, KHR_mesh_quantization's
-// integer attributes, and meshes compressed with Draco or meshopt (decoded into the same
-// vertices and triangles as their original), with the errors of damaged data.
+// Tests of how the loader reads glTF data: sparse accessors, KHR_mesh_quantization's integer
+// attributes, meshes compressed with Draco or meshopt (decoded into the same vertices and
+// triangles as their original), with the errors of damaged data; and images: WebP, the
+// fallbacks of KTX2 textures, and errors that name the extension or the image file.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -13,6 +14,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <stb_image_write.h>
+#include <webp/encode.h>
 
 #include "core/error.h"
 #include "samples/gltf_builder.h"
@@ -217,6 +220,113 @@ TEST(GltfData, RejectsDamagedCompressedData) {
   EXPECT_NE(message.find("buffer view 2: EXT_meshopt_compression decodes to 40 bytes (count times byteStride) but the "
                          "view has"),
             std::string::npos)
+      << message;
+}
+
+// ---- images ----
+
+std::vector<uint8_t> pngOf(glm::u8vec4 rgba) {
+  std::vector<uint8_t> png;
+  stbi_write_png_to_func(
+      [](void* out, void* data, int size) {
+        auto* bytes = static_cast<std::vector<uint8_t>*>(out);
+        bytes->insert(bytes->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+      },
+      &png, 1, 1, 4, &rgba, 4);
+  return png;
+}
+
+std::vector<uint8_t> webpOf(glm::u8vec4 rgba) {
+  uint8_t* encoded = nullptr;
+  const size_t size = WebPEncodeLosslessRGBA(&rgba.x, 1, 1, 4, &encoded);
+  std::vector<uint8_t> webp(encoded, encoded + size);
+  WebPFree(encoded);
+  return webp;
+}
+
+// A triangle with texture coordinates whose material's base colour is texture 0.
+GltfBuilder texturedTriangle(const nlohmann::json& texture, const nlohmann::json& images) {
+  GltfBuilder file;
+  const int position = file.addFloats(kTriangle, "VEC3", 3);
+  const int uv = file.addFloats({0, 0, 1, 0, 0, 1}, "VEC2", 2);
+  addTriangleMesh(file, {{"POSITION", position}, {"TEXCOORD_0", uv}});
+  file.json["meshes"][0]["primitives"][0]["material"] = 0;
+  file.json["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  file.json["textures"] = {texture};
+  file.json["images"] = images;
+  return file;
+}
+
+void writeBytes(const fs::path& file, const std::vector<uint8_t>& bytes) {
+  std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+// The first 12 bytes of every KTX2 file, then nothing a decoder could use.
+const std::vector<uint8_t> kKtx2 = {0xab, 'K', 'T', 'X', ' ', '2', '0', 0xbb, '\r', '\n', 0x1a, '\n', 0, 0, 0, 0};
+
+const glm::u8vec4 kRed(255, 0, 0, 255);
+const glm::u8vec4 kGreen(0, 255, 0, 255);
+
+TEST(GltfImages, WebpIsShownInsteadOfItsFallback) {
+  const fs::path dir = scratch("webp");
+  writeBytes(dir / "red.png", pngOf(kRed));
+  writeBytes(dir / "green.webp", webpOf(kGreen));
+  GltfBuilder file = texturedTriangle({{"source", 0}, {"extensions", {{"EXT_texture_webp", {{"source", 1}}}}}},
+                                      {{{"uri", "red.png"}}, {{"uri", "green.webp"}, {"mimeType", "image/webp"}}});
+  file.useExtension("EXT_texture_webp", false);
+  const Scene scene = loadScene(file.write(dir, "webp"));
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.textures[0].rgba.at(0), 0xff00ff00u);  // r in the low byte
+}
+
+TEST(GltfImages, KtxTexturesShowTheirFallbackWithOneWarning) {
+  const fs::path dir = scratch("ktx-fallback");
+  writeBytes(dir / "red.png", pngOf(kRed));
+  writeBytes(dir / "green.ktx2", kKtx2);
+  GltfBuilder file = texturedTriangle({{"source", 0}, {"extensions", {{"KHR_texture_basisu", {{"source", 1}}}}}},
+                                      {{{"uri", "red.png"}}, {{"uri", "green.ktx2"}, {"mimeType", "image/ktx2"}}});
+  file.useExtension("KHR_texture_basisu", false);
+  const fs::path path = file.write(dir, "ktx");
+  ::testing::internal::CaptureStderr();
+  const Scene scene = loadScene(path);
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.textures[0].rgba.at(0), 0xff0000ffu);
+  EXPECT_NE(printed.find("1 of 1 textures have images for KHR_texture_basisu, which wavepath cannot decode: they "
+                         "show their fallback images"),
+            std::string::npos)
+      << printed;
+}
+
+TEST(GltfImages, KtxWithoutAFallbackIsOneErrorNamingTheExtensionAndTheFile) {
+  const fs::path dir = scratch("ktx-only");
+  writeBytes(dir / "wood.ktx2", kKtx2);
+  GltfBuilder file = texturedTriangle({{"extensions", {{"KHR_texture_basisu", {{"source", 0}}}}}},
+                                      {{{"uri", "wood.ktx2"}, {"mimeType", "image/ktx2"}}});
+  file.useExtension("KHR_texture_basisu", true);
+  const std::string message = errorOf(file.write(dir, "ktx"));
+  EXPECT_NE(message.find("texture 0: its only image, image 0 ('wood.ktx2'), is for KHR_texture_basisu, which wavepath "
+                         "cannot decode"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+// An unsupported required extension is the error even when an image would not decode:
+// the extensions are checked before any image is decoded.
+TEST(GltfImages, ExtensionsAreCheckedBeforeImagesAreDecoded) {
+  const fs::path dir = scratch("order");
+  writeBytes(dir / "broken.webp", {'R', 'I', 'F', 'F', 0, 0, 0, 0, 'W', 'E', 'B', 'P', 1, 2, 3});
+  GltfBuilder file = texturedTriangle({{"source", 0}}, {{{"uri", "broken.webp"}}});
+  file.useExtension("KHR_materials_pbrSpecularGlossiness", true);
+  const fs::path path = file.write(dir, "order");
+  std::string message = errorOf(path);
+  EXPECT_NE(message.find("requires extension KHR_materials_pbrSpecularGlossiness"), std::string::npos) << message;
+  // Without it, the image's own error names its file.
+  file.json.erase("extensionsRequired");
+  file.json.erase("extensionsUsed");
+  message = errorOf(file.write(dir, "order"));
+  EXPECT_NE(message.find("material 0: texture 0: image 0 ('broken.webp') cannot be decoded (WebP: "), std::string::npos)
       << message;
 }
 

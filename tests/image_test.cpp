@@ -256,7 +256,7 @@ std::vector<uint8_t> encodeWithStb(bool jpeg, int width, int height, int channel
 
 std::string decodeError(const std::vector<uint8_t>& bytes) {
   try {
-    wp::decodePngOrJpeg(bytes.data(), bytes.size());
+    wp::decodeTexture(bytes.data(), bytes.size());
   } catch (const wp::Error& e) {
     return e.what();
   }
@@ -270,7 +270,7 @@ TEST(TextureDecoder, PngOfEveryChannelCountBecomesRgba8Exactly) {
     std::vector<uint8_t> pixels;
     for (int i = 0; i < width * height * channels; ++i) pixels.push_back(uint8_t(i * 37 + 11));
     const std::vector<uint8_t> png = encodeWithStb(false, width, height, channels, pixels);
-    const wp::Rgba8Image image = wp::decodePngOrJpeg(png.data(), png.size());
+    const wp::Rgba8Image image = wp::decodeTexture(png.data(), png.size());
     ASSERT_EQ(image.width, uint32_t(width));
     ASSERT_EQ(image.height, uint32_t(height));
     for (int p = 0; p < width * height; ++p) {
@@ -289,7 +289,7 @@ TEST(TextureDecoder, JpegDecodesCloseToWhatWasEncoded) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) pixels.insert(pixels.end(), {uint8_t(16 * x), uint8_t(16 * y), 128});
   const std::vector<uint8_t> jpeg = encodeWithStb(true, width, height, 3, pixels);
-  const wp::Rgba8Image image = wp::decodePngOrJpeg(jpeg.data(), jpeg.size());
+  const wp::Rgba8Image image = wp::decodeTexture(jpeg.data(), jpeg.size());
   ASSERT_EQ(image.width, uint32_t(width));
   for (int p = 0; p < width * height; ++p) {
     // Quality 95 with chroma subsampling: a smooth ramp keeps within a few codes.
@@ -335,7 +335,7 @@ TEST(TextureDecoder, DamagedOrOversizedOrOtherFilesAreErrors) {
   for (int i = 0; i < 4; ++i) bomb[29 + i] = uint8_t(crc >> (24 - 8 * i));
   EXPECT_NE(decodeError(bomb).find("declares 16000x16000 pixels, more than its"), std::string::npos)
       << decodeError(bomb);
-  EXPECT_EQ(decodeError({'G', 'I', 'F', '8', '9', 'a', 0, 0}), "neither PNG nor JPEG");
+  EXPECT_EQ(decodeError({'G', 'I', 'F', '8', '9', 'a', 0, 0}), "not a PNG, JPEG or WebP image");
 }
 
 TEST(Tonemap, LinearToSrgbMatchesTheFormula) {

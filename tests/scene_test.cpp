@@ -588,7 +588,9 @@ TEST_F(SceneTest, RejectsMissingAndUndecodableImages) {
   const std::string garbage =
       errorOfJson(file.json(kTexturedMaterial + R"("images":[{"uri":"data:image/png;base64,)" +
                             base64("this is not an image") + R"("}])"));
-  EXPECT_NE(garbage.find("image 0 cannot be decoded"), std::string::npos) << garbage;
+  EXPECT_NE(garbage.find("texture 0: image 0 (a data: URI) cannot be decoded (not a PNG, JPEG or WebP image)"),
+            std::string::npos)
+      << garbage;
   const std::string index = errorOfJson(file.json(R"(
     "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":3}}}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],

@@ -18,7 +18,6 @@
 #include "core/error.h"
 #include "core/file_read.h"
 #include "core/log.h"
-#include "image/texture_decoder.h"
 #include "scene/gltf_context.h"
 
 namespace wp::gltf {
@@ -175,13 +174,14 @@ bool hasGlbExtension(const fs::path& file) {
   return ext == ".glb";
 }
 
-// Decodes every image (file, data URI or .glb buffer view alike: tinygltf hands over the
-// bytes) into RGBA8; one that does not decode fails the load, naming it. `user` is the model
-// being loaded: tinygltf hands an image's buffer view over without checking that the view
-// lies inside its buffer (it read past it, found by fuzz_gltf), so that is checked first.
-bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* user) {
-  const std::string name = "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'");
+// Keeps every image's bytes (file, data URI or .glb buffer view alike: tinygltf hands them
+// over) undecoded, in image->image with as_is set: TextureTable decodes those its textures
+// use, after the file's extensions are checked, so that an image in a format wavepath cannot
+// decode is named with its extension. `user` is the model being loaded: tinygltf hands an
+// image's buffer view over without checking that the view lies inside its buffer (it read
+// past it, found by fuzz_gltf), so that is checked first.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* user) {
   if (image->bufferView >= 0) {
     const auto* model = static_cast<const tinygltf::Model*>(user);
     // tinygltf has checked both indices before calling.
@@ -189,25 +189,16 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     const size_t bufferSize = model->buffers[static_cast<size_t>(view.buffer)].data.size();
     if (view.byteOffset > bufferSize || view.byteLength > bufferSize - view.byteOffset ||
         view.byteLength > size_t(std::numeric_limits<int>::max())) {
-      *err += name + ": its buffer view " + std::to_string(image->bufferView) + " (bytes " +
+      *err += "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'") +
+              ": its buffer view " + std::to_string(image->bufferView) + " (bytes " +
               std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) +
               ") reaches past its buffer (" + std::to_string(bufferSize) + " bytes)";
       return false;
     }
   }
-  try {
-    Rgba8Image decoded = decodePngOrJpeg(bytes, size_t(std::max(size, 0)));
-    image->width = int(decoded.width);
-    image->height = int(decoded.height);
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image = std::move(decoded.rgba);
-    return true;
-  } catch (const Error& e) {
-    *err += name + " cannot be decoded (" + e.what() + "); use PNG or JPEG";
-    return false;
-  }
+  image->as_is = true;
+  image->image.assign(bytes, bytes + std::max(size, 0));
+  return true;
 }
 
 void warnEachLine(const fs::path& file, const std::string& text) {
@@ -238,7 +229,7 @@ tinygltf::Model parseGltfFile(const fs::path& file) {
 
   tinygltf::TinyGLTF parser;
   tinygltf::Model model;
-  parser.SetImageLoader(decodeImage, &model);
+  parser.SetImageLoader(keepImageBytes, &model);
   UriReads uriReads;
   parser.SetFsCallbacks({uriExists, tinygltf::ExpandFilePath, readUri, tinygltf::WriteWholeFile, &uriReads});
   std::string err;
