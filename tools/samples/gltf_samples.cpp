@@ -339,7 +339,46 @@ std::filesystem::path writeSparseGrid(const std::filesystem::path& dir, bool spa
   return file.write(dir, sparse ? "sparse-grid" : "dense-grid");
 }
 
+std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir) {
+  GltfBuilder file;
+  constexpr int kTexels = 8;
+  std::vector<uint8_t> rgb;
+  for (int i = 0; i < kTexels * kTexels; ++i) {
+    const uint8_t v = (i % kTexels + i / kTexels) % 2 == 0 ? 230 : 20;
+    rgb.insert(rgb.end(), {v, v, v});
+  }
+  std::vector<uint8_t> png;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<uint8_t>*>(context);
+        out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+      },
+      &png, kTexels, kTexels, 3, rgb.data(), kTexels * 3);
+  file.json["images"] = {{{"bufferView", file.addView(png)}, {"mimeType", "image/png"}}};
+  file.json["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
+  file.json["textures"] = {{{"source", 0}, {"sampler", 0}}};
+  file.json["materials"] = {{{"name", "checker"},
+                             {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                             {"extras", {{"wavepath", {{"bsdf", "lambert"}}}}}}};
+  // 200 m square, the texture repeated once a metre: a texel is 12.5 cm.
+  constexpr float kHalf = 100.0f;
+  const int position = file.addFloats({-kHalf, 0, -kHalf, -kHalf, 0, kHalf, kHalf, 0, kHalf, kHalf, 0, -kHalf}, "VEC3", 3);
+  const int uv = file.addFloats({-kHalf, -kHalf, -kHalf, kHalf, kHalf, kHalf, kHalf, -kHalf}, "VEC2", 2);
+  const int index = file.addAccessor(file.addView(bytesOf(std::vector<uint16_t>{0, 1, 2, 0, 2, 3})), kUnsignedShort, 6,
+                                     "SCALAR");
+  const json primitive = {{"attributes", {{"POSITION", position}, {"TEXCOORD_0", uv}}}, {"indices", index}, {"material", 0}};
+  file.json["meshes"] = {{{"name", "ground"}, {"primitives", {primitive}}}};
+  file.json["nodes"] = {{{"name", "ground"}, {"mesh", 0}},
+                        {{"name", "camera"}, {"camera", 0}, {"translation", {0.0, 1.0, 0.0}},
+                         {"rotation", rotationFromMinusZ({0.0f, -0.35f, -1.0f})}}};
+  file.json["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.01}}}}};
+  file.json["scene"] = 0;
+  file.json["scenes"] = {{{"nodes", {0, 1}}}};
+  return file.write(dir, "minification");
+}
+
 void writeAllSamples(const std::filesystem::path& dir) {
+  writeMinificationPlane(dir);
   for (Compression c : {Compression::None, Compression::Draco, Compression::Meshopt}) writeCompressedSphere(dir, c);
   writeSparseGrid(dir, true);
   writeSparseGrid(dir, false);

@@ -21,6 +21,12 @@ std::filesystem::path writeCompressedSphere(const std::filesystem::path& dir, Co
 // written out dense. Writes <dir>/sparse-grid.gltf or dense-grid.gltf, and its .bin.
 std::filesystem::path writeSparseGrid(const std::filesystem::path& dir, bool sparse);
 
+// A ground plane under the default white sky, tiled with a checker of one-texel squares
+// whose sampler asks for mipmaps (minFilter LINEAR_MIPMAP_LINEAR), seen at a grazing angle
+// so the texture is minified far beyond a texel per pixel: it shows what wavepath does
+// instead of mipmapping (docs/scenes.md). Writes <dir>/minification.gltf and .bin.
+std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir);
+
 // Writes every sample into `dir`.
 void writeAllSamples(const std::filesystem::path& dir);
 
