@@ -110,9 +110,10 @@ TEST_F(BadScene, NodeCycle) {
 }
 
 TEST_F(BadScene, UnsupportedRequiredExtension) {
-  std::string ext = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
-                    "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],";
-  expectRejected("draco.gltf", triangleGltf(kTriangle, {0, 1, 2}, "[{\"mesh\":0}]", ext), "KHR_draco_mesh_compression");
+  std::string ext = "\"extensionsUsed\":[\"KHR_materials_pbrSpecularGlossiness\"],"
+                    "\"extensionsRequired\":[\"KHR_materials_pbrSpecularGlossiness\"],";
+  expectRejected("specgloss.gltf", triangleGltf(kTriangle, {0, 1, 2}, "[{\"mesh\":0}]", ext),
+                 "KHR_materials_pbrSpecularGlossiness");
 }
 
 TEST_F(BadScene, NothingRenderable) {

@@ -73,7 +73,7 @@ Rgb8 readPng(const std::filesystem::path& path) {
 }
 
 // The viewer stops at --spp and traces the same paths (seeded by pixel, sample and seed) as
-// render, only split into smaller passes; the README promises bit-identical images across
+// render, only split into smaller passes; docs/testing.md promises bit-identical images across
 // pass splits, so the radiance and its variance must match exactly, not just statistically.
 void expectSameRadiance(const std::string& backend) {
   std::filesystem::path dir = scratchDirectory("view-" + backend);

@@ -21,10 +21,9 @@
 namespace wp {
 namespace {
 
-// A path down each level, plus the two entries a bottom-level visit may push while its lane
+// A path down a level, plus the two entries a bottom-level visit may push while its lane
 // holds a postponed leaf.
-static_assert(2 * WP_BVH_MAX_DEPTH + 2 <= WP_TRAVERSAL_STACK_SIZE,
-              "the traversal stack must hold a top-level and a bottom-level path");
+static_assert(WP_BVH_MAX_DEPTH + 2 <= WP_LEVEL_STACK_SIZE, "a traversal stack must hold a path down its level");
 
 constexpr uint32_t kMeshLeafSize = WP_MAX_LEAF_TRIANGLES;
 // One instance per top-level leaf: an instance test (transform plus a whole bottom-level
@@ -293,7 +292,7 @@ double sceneRadius(const GpuScene& out) {
 void setSkyProbability(const Scene& scene, double lightFlux, GpuScene& out) {
   double skyPower = scene.sky.width > 0 ? environmentPower(scene.sky, scene.skyIntensity, sceneRadius(out)) : 0.0;
   double total = skyPower + lightFlux;
-  out.sky.transform.z = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
+  out.sky.selectionProbability = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
 }
 
 }  // namespace

@@ -16,19 +16,11 @@ SceneArray arrayOf(const std::vector<T>& v, const char* name) {
 }  // namespace
 
 std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
-  // In the order of kSceneBindings.
-  return {arrayOf(s.nodes, "BVH nodes"),
-          arrayOf(s.triangles, "triangles"),
-          arrayOf(s.instances, "instances"),
-          arrayOf(s.planes, "planes"),
-          arrayOf(s.materials, "materials"),
-          arrayOf(s.lights, "emissive triangles"),
-          arrayOf(s.skyRadiance, "sky texels"),
-          arrayOf(s.skyMarginal, "sky row distribution"),
-          arrayOf(s.skyConditional, "sky column distributions"),
-          arrayOf(s.triangleShading, "triangle shading"),
-          arrayOf(s.textures, "textures"),
-          arrayOf(s.texels, "texture texels")};
+  // Each scene array of the binding table is the GpuScene member of the same name, which
+  // messages name it by.
+#define WP_SCENE_ARRAY(name) arrayOf(s.name, #name),
+  return {WP_FOR_EACH_SCENE_ARRAY};
+#undef WP_SCENE_ARRAY
 }
 
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels) {

@@ -9,17 +9,31 @@
 
 #include <glm/glm.hpp>
 
-#include "shaders/common/layout.h"
+#include "shaders/common/binding_table.h"
 
 namespace wp {
 
 struct GpuScene;
 
-// The bindings (layout.h) of a packed scene's arrays, in the order sceneArrays lists them.
-inline constexpr std::array<uint32_t, 12> kSceneBindings = {
-    WP_BINDING_NODES,          WP_BINDING_TRIANGLES,       WP_BINDING_INSTANCES,      WP_BINDING_PLANES,
-    WP_BINDING_MATERIALS,      WP_BINDING_LIGHTS,          WP_BINDING_ENV_RADIANCE,   WP_BINDING_ENV_MARGINAL,
-    WP_BINDING_ENV_CONDITIONAL, WP_BINDING_TRIANGLE_SHADING, WP_BINDING_TEXTURES,     WP_BINDING_TEXELS};
+// The bindings of a packed scene's arrays: the binding table's TEXELS rows, in its order,
+// which is the order sceneArrays lists them in.
+inline constexpr size_t kSceneArrayCount = [] {
+  size_t count = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    count += b.access == gpu::BindingAccess::Texels ? 1 : 0;
+  }
+  return count;
+}();
+inline constexpr std::array<uint32_t, kSceneArrayCount> kSceneBindings = [] {
+  std::array<uint32_t, kSceneArrayCount> bindings{};
+  size_t next = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    if (b.access == gpu::BindingAccess::Texels) {
+      bindings[next++] = b.index;
+    }
+  }
+  return bindings;
+}();
 
 // One array of a packed scene as a backend uploads it to kSceneBindings[i].
 struct SceneArray {
@@ -36,16 +50,40 @@ enum class Kernel { Generate, Extend, Shade, Advance, Connect, Accumulate };
 inline constexpr int kKernelCount = 6;
 const char* kernelName(Kernel kernel);
 
-// How many threads a dispatch runs: a count the host knows, or the length of a queue the
-// GPU wrote into the counters (Vulkan: indirect dispatch).
+// How many threads a dispatch runs: a count the host knows, or a queue's length as dispatch
+// arguments that an earlier dispatch of the pass wrote into the counters buffer, at word
+// `argumentsWord` (queues.h; Vulkan dispatches indirectly, OpenCL reads them back or
+// launches every path of the pass).
 struct DispatchSize {
-  enum class Source { Host, RayQueue, ShadowQueue };
+  enum class Source { Host, Queue };
   Source source = Source::Host;
-  uint32_t threads = 0;
+  uint32_t threads = 0;        // Host
+  uint32_t argumentsWord = 0;  // Queue: WP_COUNTER_*_DISPATCH
 
-  static DispatchSize fixed(uint32_t threads) { return {Source::Host, threads}; }
-  static DispatchSize rayQueue() { return {Source::RayQueue, 0}; }
-  static DispatchSize shadowQueue() { return {Source::ShadowQueue, 0}; }
+  static DispatchSize fixed(uint32_t threads) { return {Source::Host, threads, 0}; }
+  // The current bounce's ray queue (extend and shade).
+  static DispatchSize rayQueue() { return {Source::Queue, 0, WP_COUNTER_EXTEND_DISPATCH}; }
+  // The current bounce's shadow queue (connect).
+  static DispatchSize shadowQueue() { return {Source::Queue, 0, WP_COUNTER_CONNECT_DISPATCH}; }
+};
+
+// Whether a stage writes the dispatch arguments that later Queue-sized dispatches read.
+enum class DispatchArguments { Untouched, Written };
+
+// One stage of a pass, as the integrator orders them (wavefront.cpp).
+struct StageDispatch {
+  Kernel kernel;
+  gpu::PassConstants constants;
+  DispatchSize size;
+  DispatchArguments arguments = DispatchArguments::Untouched;
+};
+
+// What a pass is, before its dispatches: its paths, and the bounces it traces (rounds of
+// extend, shade, advance and connect), each of which traces at most one ray and one shadow
+// ray per path.
+struct PassShape {
+  uint32_t paths = 0;
+  uint32_t bounces = 0;
 };
 
 struct PassResult {
@@ -67,7 +105,7 @@ struct Accumulation {
   std::vector<glm::vec4> sumSquares;
 };
 
-// The accumulation buffer's contents for `accumulation` (WP_BINDING_ACCUM: the sums of
+// The accumulation buffer's contents for `accumulation` (Binding::accumulation: the sums of
 // every pixel, then the sums of squares); throws wp::Error when the arrays do not hold
 // `pixels` entries each.
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels);
@@ -90,18 +128,18 @@ public:
   // `maxPaths` paths in flight, by the largest buffer and by its memory (an image with more
   // is rendered in tiles). Call after loadScene.
   virtual uint64_t maxAccumulationPixels(uint32_t maxPaths) const = 0;
-  // Sets the render parameters and sizes path state for params.counts.w paths and the
-  // accumulation for params.image.z pixels (the tile's); clears the accumulation. Throws
+  // Sets the render parameters and sizes path state for params.maxPaths paths and the
+  // accumulation for params.pixelCount pixels (the tile's); clears the accumulation. Throws
   // wp::Error, saying what needs how much and what the device allows, when a buffer does
   // not fit.
   virtual void configure(const gpu::RenderParams& params) = 0;
   // Starts recording a sample pass; dispatches run in order, each after the previous one.
-  virtual void beginPass() = 0;
-  virtual void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) = 0;
+  virtual void beginPass(const PassShape& shape) = 0;
+  virtual void dispatch(const StageDispatch& stage) = 0;
   // Runs the recorded pass and waits for it.
   virtual PassResult endPass() = 0;
   virtual Accumulation readAccumulation() = 0;
-  // Replaces the accumulation with `accumulation` (one entry per pixel of params.image.z in
+  // Replaces the accumulation with `accumulation` (one entry per pixel of params.pixelCount in
   // each array), e.g. a checkpoint's sums to go on from.
   virtual void writeAccumulation(const Accumulation& accumulation) = 0;
 };

@@ -20,26 +20,34 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.camera = makeLens(scene.camera, settings.width, settings.height);
   p.sky = gpuScene.sky;
   if (!settings.skySampling) {
-    p.sky.transform.z = 0.0f;  // the sky is then found by BSDF sampling alone
+    p.sky.selectionProbability = 0.0f;  // the sky is then found by BSDF sampling alone
   }
   const PixelRegion region = settings.pixelRegion();
-  const uint32_t pixels = uint32_t(region.pixels());
-  p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);
-  p.region = glm::uvec4(region.x0, region.y0, region.width(), region.height());
-  uint32_t mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
-                  : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
-                                                             : WP_MODE_BSDF;
-  p.mode = glm::uvec4(settings.maxBounces, mode, settings.russianRouletteStart, uint32_t(gpuScene.lights.size()));
-  uint64_t totalPaths = uint64_t(pixels) * settings.samplesInRange();
-  uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
-  p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, gpuScene.placedInstances,
-                        maxPaths);
-  uint32_t bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
-                       (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
-  uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
-                                                                                  : WP_LIGHT_SELECTION_POWER;
-  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection,
-                         gpuScene.punctualLightCount);
+  p.width = settings.width;
+  p.height = settings.height;
+  p.pixelCount = uint32_t(region.pixels());
+  p.seed = settings.seed;
+  p.regionX = region.x0;
+  p.regionY = region.y0;
+  p.regionWidth = region.width();
+  p.regionHeight = region.height();
+  p.maxBounces = settings.maxBounces;
+  p.mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
+           : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
+                                                      : WP_MODE_BSDF;
+  p.rouletteStart = settings.russianRouletteStart;
+  p.lightCount = uint32_t(gpuScene.lights.size());
+  p.planeCount = uint32_t(gpuScene.planes.size());
+  p.tlasRoot = gpuScene.tlasRoot;
+  p.instanceCount = gpuScene.placedInstances;
+  uint64_t totalPaths = uint64_t(p.pixelCount) * settings.samplesInRange();
+  p.maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
+  p.bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
+                (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
+  p.contributionClamp = settings.contributionClamp;
+  p.lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
+                                                                            : WP_LIGHT_SELECTION_POWER;
+  p.punctualLightCount = gpuScene.punctualLightCount;
   return p;
 }
 
@@ -81,9 +89,12 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
 
 void WavefrontRenderer::configureTile(size_t index) {
   const PixelRegion& tile = tiles_[index];
-  params_.region = glm::uvec4(tile.x0, tile.y0, tile.width(), tile.height());
-  params_.image.z = uint32_t(tile.pixels());
-  params_.counts.w =
+  params_.regionX = tile.x0;
+  params_.regionY = tile.y0;
+  params_.regionWidth = tile.width();
+  params_.regionHeight = tile.height();
+  params_.pixelCount = uint32_t(tile.pixels());
+  params_.maxPaths =
       uint32_t(std::clamp<uint64_t>(tile.pixels() * settings_.samplesInRange(), 1, settings_.maxPaths));
   backend_.configure(params_);
   tile_ = index;
@@ -122,23 +133,22 @@ void WavefrontRenderer::restart(const Scene& scene, const GpuScene& gpuScene, co
 }
 
 void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats) {
-  auto constants = [&](uint32_t bounce) {
-    gpu::PassConstants c;
-    c.pass = glm::uvec4(firstPixel, firstSample, pathCount, bounce);
-    return c;
-  };
-  backend_.beginPass();
-  backend_.dispatch(Kernel::Generate, constants(0), DispatchSize::fixed(pathCount));
+  auto constants = [&](uint32_t bounce) { return gpu::PassConstants{firstPixel, firstSample, pathCount, bounce}; };
   // Vertices of bounce 0 .. maxBounces scatter; the rays they spawn reach bounce
   // maxBounces + 1, where only emission is gathered.
-  for (uint32_t bounce = 0; bounce <= settings_.maxBounces + 1; ++bounce) {
-    backend_.dispatch(Kernel::Extend, constants(bounce), DispatchSize::rayQueue());
-    backend_.dispatch(Kernel::Shade, constants(bounce), DispatchSize::rayQueue());
-    backend_.dispatch(Kernel::Advance, constants(bounce), DispatchSize::fixed(1));
-    backend_.dispatch(Kernel::Connect, constants(bounce), DispatchSize::shadowQueue());
+  const uint32_t bounces = settings_.maxBounces + 2;
+  backend_.beginPass({pathCount, bounces});
+  // Generate fills bounce 0's ray queue and sizes extend and shade to it; each advance sizes
+  // connect of its bounce and extend and shade of the next (queues.h).
+  backend_.dispatch({Kernel::Generate, constants(0), DispatchSize::fixed(pathCount), DispatchArguments::Written});
+  for (uint32_t bounce = 0; bounce < bounces; ++bounce) {
+    backend_.dispatch({Kernel::Extend, constants(bounce), DispatchSize::rayQueue()});
+    backend_.dispatch({Kernel::Shade, constants(bounce), DispatchSize::rayQueue()});
+    backend_.dispatch({Kernel::Advance, constants(bounce), DispatchSize::fixed(1), DispatchArguments::Written});
+    backend_.dispatch({Kernel::Connect, constants(bounce), DispatchSize::shadowQueue()});
   }
-  uint32_t pixels = params_.image.z;
-  backend_.dispatch(Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels)));
+  uint32_t pixels = params_.pixelCount;
+  backend_.dispatch({Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels))});
   PassResult result = backend_.endPass();
   stats.extensionRays += result.extensionRays;
   stats.shadowRays += result.shadowRays;
@@ -150,10 +160,10 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
 
 void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
   // The current tile's pixels, and where the next path lies in its own render order.
-  const uint64_t pixels = params_.image.z;
+  const uint64_t pixels = params_.pixelCount;
   const uint64_t stop = tiles_.size() > 1 ? std::min(end, tileEnd(tile_)) : end;
   const uint64_t path = pixels * settings_.firstSample + (pathsDone_ - tileStart(tile_));
-  uint32_t count = uint32_t(std::min<uint64_t>({params_.counts.w, maxCount, stop - pathsDone_}));
+  uint32_t count = uint32_t(std::min<uint64_t>({params_.maxPaths, maxCount, stop - pathsDone_}));
   runPass(uint32_t(path % pixels), uint32_t(path / pixels), count, stats);
   pathsDone_ += count;
   stats.samples += count;
@@ -163,7 +173,7 @@ RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   while (pathsDone_ < pathsEnd()) {
-    runNextPass(pathsEnd(), params_.counts.w, stats);
+    runNextPass(pathsEnd(), params_.maxPaths, stats);
     if (tiles_.size() > 1 && pathsDone_ == tileEnd(tile_)) {
       storeTile();
       if (tile_ + 1 < tiles_.size()) configureTile(tile_ + 1);
@@ -185,7 +195,7 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
   }
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
+  const uint64_t end = uint64_t(params_.pixelCount) * samplesPerPixel;
   // Passes fill what is left of the budget at the measured rate, but never fall under
   // kSmallestPass paths, and the frame ends rather than run a pass under a quarter of the
   // budget: a small pass pays the fixed cost per pass (four dispatches per bounce) on few

@@ -94,7 +94,7 @@ private:
 
   Backend& backend_;
   RenderSettings settings_;
-  gpu::RenderParams params_;  // params_.region and image.z are the current tile's
+  gpu::RenderParams params_;  // its region and pixelCount are the current tile's
   std::vector<PixelRegion> tiles_;
   size_t tile_ = 0;            // the one configured
   Accumulation tiledSums_;     // with several tiles: the region's sums, finished tiles filled in

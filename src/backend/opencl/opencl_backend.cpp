@@ -8,9 +8,22 @@
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
 #include "render/device_limits.h"
-#include "shaders/opencl/bindings.h"
 
 namespace wp {
+namespace {
+
+// The kernels take one argument per binding that OpenCL uses (at the binding's index, the
+// table lists them first), then the pass constants.
+constexpr uint32_t kPassConstantsArgument = [] {
+  uint32_t count = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    count += b.openCl ? 1 : 0;
+  }
+  return count;
+}();
+
+}  // namespace
+
 OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate)
     : context_(std::make_unique<OpenClContext>(deviceIndex)), dispatchMode_(dispatch), validate_(validate) {
   const OpenClDeviceInfo& device = context_->device;
@@ -101,8 +114,8 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
   if (sceneBuffers_[0].handle() == nullptr) {
     throw Error("internal: OpenClBackend::configure called before loadScene");
   }
-  uint64_t maxPaths = params.counts.w;
-  uint64_t pixels = params.image.z;
+  uint64_t maxPaths = params.maxPaths;
+  uint64_t pixels = params.pixelCount;
   uint64_t rayBytes = 2 * maxPaths * sizeof(gpu::PathRay);
   uint64_t accumulationBytes = pixels * kAccumulationBytesPerPixel;
   checkPathStateFits(limits_, rayBytes, pixels, pathStateBytes(maxPaths) + accumulationBytes);
@@ -117,7 +130,7 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
     pathRadiance_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(glm::vec4));
     counters_ = OpenClBuffer(context, CL_MEM_READ_WRITE, sizeof(gpu::QueueCounters));
   }
-  pixelCount_ = params.image.z;
+  pixelCount_ = params.pixelCount;
   accumulation_ = OpenClBuffer(context, CL_MEM_READ_WRITE, accumulationBytes);
   const float zero = 0.0f;
   CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,
@@ -127,19 +140,18 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
 }
 
 void OpenClBackend::bindPathState() {
-  bind(WP_BINDING_PARAMS, params_);
-  bind(WP_BINDING_RAYS, rays_);
-  bind(WP_BINDING_HITS, hits_);
-  bind(WP_BINDING_SHADOW_RAYS, shadowRays_);
-  bind(WP_BINDING_PATH_RADIANCE, pathRadiance_);
-  bind(WP_BINDING_COUNTERS, counters_);
-  bind(WP_BINDING_ACCUM, accumulation_);
+  bind(gpu::Binding::params, params_);
+  bind(gpu::Binding::rays, rays_);
+  bind(gpu::Binding::hits, hits_);
+  bind(gpu::Binding::shadowRays, shadowRays_);
+  bind(gpu::Binding::pathRadiance, pathRadiance_);
+  bind(gpu::Binding::counters, counters_);
+  bind(gpu::Binding::accumulation, accumulation_);
 }
 
-void OpenClBackend::beginPass() {
+void OpenClBackend::beginPass(const PassShape& shape) {
+  pass_ = shape;
   countersStale_ = true;
-  passPaths_ = 0;
-  passBounces_ = 0;
 }
 
 std::array<uint32_t, WP_COUNTER_WORDS> OpenClBackend::readCounters() {
@@ -149,9 +161,9 @@ std::array<uint32_t, WP_COUNTER_WORDS> OpenClBackend::readCounters() {
   return counters;
 }
 
-uint32_t OpenClBackend::queueThreads(uint32_t word, uint32_t pathCount) {
+uint32_t OpenClBackend::queueThreads(uint32_t word) {
   if (dispatchMode_ == ClDispatch::Max) {
-    return pathCount;
+    return pass_.paths;
   }
   if (countersStale_) {
     lastCounters_ = readCounters();
@@ -160,24 +172,16 @@ uint32_t OpenClBackend::queueThreads(uint32_t word, uint32_t pathCount) {
   return lastCounters_[word] * WP_WORKGROUP_SIZE;
 }
 
-void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) {
-  uint32_t pathCount = constants.pass.z;
-  uint32_t threads = size.threads;
-  if (size.source == DispatchSize::Source::RayQueue) {
-    threads = queueThreads(WP_COUNTER_EXTEND_DISPATCH, pathCount);
-  } else if (size.source == DispatchSize::Source::ShadowQueue) {
-    threads = queueThreads(WP_COUNTER_CONNECT_DISPATCH, pathCount);
-  }
-  passPaths_ = std::max(passPaths_, pathCount);
-  passBounces_ += kernel == Kernel::Extend;
-  // Generate and advance are the kernels that write the dispatch words.
-  countersStale_ = countersStale_ || kernel == Kernel::Generate || kernel == Kernel::Advance;
+void OpenClBackend::dispatch(const StageDispatch& stage) {
+  const DispatchSize& size = stage.size;
+  uint32_t threads = size.source == DispatchSize::Source::Queue ? queueThreads(size.argumentsWord) : size.threads;
+  countersStale_ = countersStale_ || stage.arguments == DispatchArguments::Written;
   if (threads == 0) {
     return;
   }
-  int k = static_cast<int>(kernel);
+  int k = static_cast<int>(stage.kernel);
   cl_kernel clKernel = variants_[motion_].kernels[k];
-  CL_CHECK(clSetKernelArg(clKernel, WP_ARG_PASS, sizeof(constants), &constants));
+  CL_CHECK(clSetKernelArg(clKernel, kPassConstantsArgument, sizeof(stage.constants), &stage.constants));
   size_t local = WP_WORKGROUP_SIZE;
   size_t global = (size_t(threads) + local - 1) / local * local;
   cl_event event = nullptr;
@@ -188,9 +192,9 @@ void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants,
 void OpenClBackend::checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& words) const {
   // A queue never holds more than one entry per path, and each bounce traces at most one
   // ray and one shadow ray per path.
-  uint64_t paths = passPaths_;
-  bool inBounds = words[WP_COUNTER_TOTAL_RAYS] <= paths * passBounces_ &&
-                  words[WP_COUNTER_TOTAL_SHADOW_RAYS] <= paths * passBounces_;
+  uint64_t paths = pass_.paths;
+  bool inBounds = words[WP_COUNTER_TOTAL_RAYS] <= paths * pass_.bounces &&
+                  words[WP_COUNTER_TOTAL_SHADOW_RAYS] <= paths * pass_.bounces;
   std::string queues;
   for (uint32_t i = 0; i < 4; ++i) {
     inBounds = inBounds && words[WP_COUNTER_RAYS + i] <= paths;

@@ -24,8 +24,8 @@ public:
   void loadScene(const GpuScene& scene) override;
   bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
-  void beginPass() override;
-  void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
+  void beginPass(const PassShape& shape) override;
+  void dispatch(const StageDispatch& stage) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
   void writeAccumulation(const Accumulation& accumulation) override;
@@ -54,9 +54,6 @@ private:
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
   std::vector<VkBufferView> texelViews_;
 
-  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS, then the sky's
-  // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL, then WP_BINDING_TRIANGLE_SHADING ..
-  // WP_BINDING_TEXELS.
   std::array<VulkanBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
   VulkanBuffer bsdfTables_;  // gpu::kGgxAlbedo (energy_compensation.h)
   VulkanBuffer params_;
