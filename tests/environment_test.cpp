@@ -347,9 +347,11 @@ TEST_F(EnvironmentLoadTest, ErrorsAreOneLineNamingTheFile) {
   std::ofstream(textExr) << "this is not an image either\n";
   fs::path png = dir / "sky.png";
   std::ofstream(png) << "whatever";
-  // A Radiance header stb_image does not accept (XYZ instead of RGB primaries).
+  // A Radiance header wavepath does not accept (XYZ instead of RGB primaries).
   fs::path xyz = dir / "xyz.hdr";
   std::ofstream(xyz) << "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 4 +X 4\n";
+  fs::path folder = dir / "folder.hdr";
+  fs::create_directories(folder);
   fs::path nanExr = dir / "nan.exr";
   wp::RadianceImage image;
   image.width = 2;
@@ -363,8 +365,8 @@ TEST_F(EnvironmentLoadTest, ErrorsAreOneLineNamingTheFile) {
   };
   for (const Case& c : {Case{missing, "no such file"}, Case{text, "not a Radiance HDR file"},
                         Case{textExr, "not an OpenEXR file"}, Case{png, "unsupported format '.png'"},
-                        Case{xyz, "cannot be read"}, Case{nanExr, "texel (1, 0) is not a finite number"},
-                        Case{dir, "not a regular file"}}) {
+                        Case{xyz, "not 32-bit_rle_rgbe"}, Case{nanExr, "texel (1, 0) is not a finite number"},
+                        Case{folder, "is a directory"}}) {
     std::string message = loadError(c.path);
     EXPECT_NE(message.find(c.path.string()), std::string::npos) << c.path << ": " << message;
     EXPECT_NE(message.find(c.says), std::string::npos) << message;

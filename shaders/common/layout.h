@@ -252,7 +252,7 @@ WP_STRUCT(GpuEnvironment)
   uint unused2;
 WP_STRUCT_END(GpuEnvironment)
 
-// Per-frame settings, a uniform buffer (OpenCL: a constant argument).
+// Per-frame settings, a read-only storage buffer (OpenCL: a constant argument).
 WP_STRUCT(RenderParams)
   ThinLens camera;     // optics and placement of the camera (thin_lens.h)
   GpuEnvironment sky;  // the sky seen by rays that leave the scene (environment.h)
@@ -273,7 +273,7 @@ WP_STRUCT(RenderParams)
   uint lightSelection;      // WP_LIGHT_SELECTION_*
   uint punctualLightCount;  // punctual (delta) lights, the last of the light table
   // The pixels traced: first column and row, width and height (the whole image unless
-  // --region).
+  // --region, or a tile of it when it does not fit the device at once).
   uint regionX;
   uint regionY;
   uint regionWidth;

@@ -9,8 +9,13 @@ layout(push_constant) uniform Push { PassConstants pc; };
 
 #define WP_GLSL_BINDING(name, binding, Element, stride, format, access, backends) \
   WP_GLSL_##access(name, binding, Element, stride, format)
+// The render parameters: a read-only storage buffer, not a uniform buffer: lavapipe (Mesa
+// 22.3) inlines uniform values into a shader whose loops they bound (the lights, planes and
+// aperture blades are counted in RenderParams) by compiling it anew at every bind, and never
+// frees the copies: a 10,000-spp render grew by 100 MB (wavepath-bench-soak,
+// docs/robustness.md).
 #define WP_GLSL_UNIFORM(name, index, Element, stride, format) \
-  layout(std140, binding = index) uniform name##Block { Element name; };
+  layout(std430, binding = index) readonly buffer name##Block { Element name; };
 #define WP_GLSL_STORAGE(name, index, Element, stride, format)              \
   layout(std430, binding = index) buffer name##Block { Element name[]; }; \
   Element name##At(uint i) { return name[i]; }

@@ -9,15 +9,16 @@ namespace wp {
 namespace {
 
 template <typename T>
-SceneArray arrayOf(const std::vector<T>& v) {
-  return {v.data(), uint64_t(v.size()) * sizeof(T)};
+SceneArray arrayOf(const std::vector<T>& v, const char* name) {
+  return {v.data(), uint64_t(v.size()) * sizeof(T), name};
 }
 
 }  // namespace
 
 std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
-  // Each scene array of the binding table is the GpuScene member of the same name.
-#define WP_SCENE_ARRAY(name) arrayOf(s.name),
+  // Each scene array of the binding table is the GpuScene member of the same name, which
+  // messages name it by.
+#define WP_SCENE_ARRAY(name) arrayOf(s.name, #name),
   return {WP_FOR_EACH_SCENE_ARRAY};
 #undef WP_SCENE_ARRAY
 }

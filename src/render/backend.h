@@ -39,6 +39,7 @@ inline constexpr std::array<uint32_t, kSceneArrayCount> kSceneBindings = [] {
 struct SceneArray {
   const void* data = nullptr;
   uint64_t bytes = 0;
+  const char* name = "";  // what it holds, for messages: "triangle shading"
 };
 
 // What a GpuScene puts on the device, the one list both backends upload: entry i is read by
@@ -91,6 +92,13 @@ struct PassResult {
   std::array<double, kKernelCount> kernelMs{};  // GPU time per kernel; zeros if unsupported
 };
 
+// Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray and its
+// radiance.
+inline constexpr uint64_t kBytesPerPath =
+    2 * sizeof(gpu::PathRay) + sizeof(gpu::HitRecord) + sizeof(gpu::ShadowRay) + sizeof(glm::vec4);
+// Device memory a pixel of the accumulation takes: its sum and its sum of squares.
+inline constexpr uint64_t kAccumulationBytesPerPixel = 2 * sizeof(glm::vec4);
+
 // Running per-pixel sums of radiance and of its square over all samples so far.
 struct Accumulation {
   std::vector<glm::vec4> sum;
@@ -111,12 +119,19 @@ public:
   virtual uint32_t maxPathsInFlight() const = 0;
   // Uploads the scene and picks the stage kernels for it: with motion blur where something
   // moves (GpuScene::moving), else without. Call before configure; may be called again to
-  // replace the scene.
+  // replace the scene. Throws wp::Error, naming the array, its size and the device's limit,
+  // when an array or the whole scene does not fit the device.
   virtual void loadScene(const GpuScene& scene) = 0;
   // Whether the kernels of the loaded scene are the motion-blur ones.
   virtual bool motionKernels() const = 0;
+  // The most pixels whose accumulation fits the device beside the loaded scene and
+  // `maxPaths` paths in flight, by the largest buffer and by its memory (an image with more
+  // is rendered in tiles). Call after loadScene.
+  virtual uint64_t maxAccumulationPixels(uint32_t maxPaths) const = 0;
   // Sets the render parameters and sizes path state for params.maxPaths paths and the
-  // accumulation for params.pixelCount pixels; clears the accumulation.
+  // accumulation for params.pixelCount pixels (the tile's); clears the accumulation. Throws
+  // wp::Error, saying what needs how much and what the device allows, when a buffer does
+  // not fit.
   virtual void configure(const gpu::RenderParams& params) = 0;
   // Starts recording a sample pass; dispatches run in order, each after the previous one.
   virtual void beginPass(const PassShape& shape) = 0;

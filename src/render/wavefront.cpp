@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "bvh/gpu_scene.h"
+#include "core/error.h"
 #include "render/camera_lens.h"
 #include "scene/scene.h"
 #include "shaders/common/bsdf_models.h"
@@ -49,6 +51,19 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   return p;
 }
 
+std::vector<PixelRegion> splitIntoTiles(const PixelRegion& region, uint64_t maxPixels) {
+  const uint32_t height = region.height();
+  const uint64_t rowsPerTile = std::clamp<uint64_t>(maxPixels / region.width(), 1, height);
+  const uint64_t count = (height + rowsPerTile - 1) / rowsPerTile;
+  std::vector<PixelRegion> tiles;
+  for (uint64_t i = 0; i < count; ++i) {
+    const auto top = region.y0 + uint32_t(height * i / count);
+    const auto bottom = region.y0 + uint32_t(height * (i + 1) / count);
+    tiles.push_back({region.x0, top, region.x1, bottom});
+  }
+  return tiles;
+}
+
 WavefrontRenderer::WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene,
                                      const RenderSettings& settings)
     : backend_(backend) {
@@ -60,12 +75,51 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   settings_ = settings;
   settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
-  backend_.configure(params_);
-  firstPath_ = uint64_t(params_.pixelCount) * settings_.firstSample;
+  const PixelRegion region = settings_.pixelRegion();
+  firstPath_ = region.pixels() * settings_.firstSample;
   pathsDone_ = firstPath_;
+  tiles_ = splitIntoTiles(region, backend_.maxAccumulationPixels(settings_.maxPaths));
+  tiledSums_ = {};
+  if (tiles_.size() > 1) {
+    tiledSums_.sum.assign(region.pixels(), glm::vec4(0.0f));
+    tiledSums_.sumSquares.assign(region.pixels(), glm::vec4(0.0f));
+  }
+  configureTile(0);
+}
+
+void WavefrontRenderer::configureTile(size_t index) {
+  const PixelRegion& tile = tiles_[index];
+  params_.regionX = tile.x0;
+  params_.regionY = tile.y0;
+  params_.regionWidth = tile.width();
+  params_.regionHeight = tile.height();
+  params_.pixelCount = uint32_t(tile.pixels());
+  params_.maxPaths =
+      uint32_t(std::clamp<uint64_t>(tile.pixels() * settings_.samplesInRange(), 1, settings_.maxPaths));
+  backend_.configure(params_);
+  tile_ = index;
+}
+
+uint64_t WavefrontRenderer::tileStart(size_t index) const {
+  uint64_t start = firstPath_;
+  for (size_t t = 0; t < index; ++t) start += tiles_[t].pixels() * settings_.samplesInRange();
+  return start;
+}
+
+uint64_t WavefrontRenderer::tileEnd(size_t index) const {
+  return tileStart(index) + tiles_[index].pixels() * settings_.samplesInRange();
+}
+
+void WavefrontRenderer::storeTile() {
+  const Accumulation tile = backend_.readAccumulation();
+  const PixelRegion region = settings_.pixelRegion();
+  const size_t at = size_t(tiles_[tile_].y0 - region.y0) * region.width();  // tiles are bands of whole rows
+  std::copy(tile.sum.begin(), tile.sum.end(), tiledSums_.sum.begin() + long(at));
+  std::copy(tile.sumSquares.begin(), tile.sumSquares.end(), tiledSums_.sumSquares.begin() + long(at));
 }
 
 void WavefrontRenderer::resume(const Accumulation& accumulation, uint64_t pathsDone) {
+  if (tiles_.size() > 1) throw std::logic_error("a render in tiles cannot resume a checkpoint");
   backend_.writeAccumulation(accumulation);
   pathsDone_ = pathsDone;
 }
@@ -105,9 +159,12 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
 }
 
 void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
+  // The current tile's pixels, and where the next path lies in its own render order.
   const uint64_t pixels = params_.pixelCount;
-  uint32_t count = uint32_t(std::min<uint64_t>({params_.maxPaths, maxCount, end - pathsDone_}));
-  runPass(uint32_t(pathsDone_ % pixels), uint32_t(pathsDone_ / pixels), count, stats);
+  const uint64_t stop = tiles_.size() > 1 ? std::min(end, tileEnd(tile_)) : end;
+  const uint64_t path = pixels * settings_.firstSample + (pathsDone_ - tileStart(tile_));
+  uint32_t count = uint32_t(std::min<uint64_t>({params_.maxPaths, maxCount, stop - pathsDone_}));
+  runPass(uint32_t(path % pixels), uint32_t(path / pixels), count, stats);
   pathsDone_ += count;
   stats.samples += count;
 }
@@ -117,6 +174,10 @@ RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats
   auto start = std::chrono::steady_clock::now();
   while (pathsDone_ < pathsEnd()) {
     runNextPass(pathsEnd(), params_.maxPaths, stats);
+    if (tiles_.size() > 1 && pathsDone_ == tileEnd(tile_)) {
+      storeTile();
+      if (tile_ + 1 < tiles_.size()) configureTile(tile_ + 1);
+    }
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (afterPass && !afterPass(stats)) break;
   }
@@ -124,9 +185,14 @@ RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats
   return stats;
 }
 
-uint64_t WavefrontRenderer::pathsEnd() const { return uint64_t(params_.pixelCount) * settings_.sampleEnd(); }
+uint64_t WavefrontRenderer::pathsEnd() const { return settings_.pixelRegion().pixels() * settings_.sampleEnd(); }
 
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
+  if (tiles_.size() > 1) {
+    throw Error("a " + std::to_string(settings_.width) + "x" + std::to_string(settings_.height) +
+                " image does not fit " + backend_.deviceName() + " at once, and a progressive render cannot be split "
+                "into tiles; make the window smaller");
+  }
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   const uint64_t end = uint64_t(params_.pixelCount) * samplesPerPixel;
@@ -156,12 +222,27 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
 }
 
 uint32_t WavefrontRenderer::samplesPerPixelDone() const {
-  return uint32_t((pathsDone_ - firstPath_) / params_.pixelCount);
+  return uint32_t((pathsDone_ - firstPath_) / settings_.pixelRegion().pixels());
 }
 
-Accumulation WavefrontRenderer::accumulation() { return backend_.readAccumulation(); }
+Accumulation WavefrontRenderer::accumulation() {
+  if (tiles_.size() > 1) throw std::logic_error("a render in tiles has no checkpoint");
+  return backend_.readAccumulation();
+}
 
-RadianceImage WavefrontRenderer::image() { return imageOf(backend_.readAccumulation()); }
+RadianceImage WavefrontRenderer::image() {
+  RadianceImage image = imageOf(tiles_.size() > 1 ? tiledSums_ : backend_.readAccumulation());
+  // What a scene may hold is bounded (radiance_limit.h, the loader's checks) so that no sum
+  // overflows: a pixel that is not finite is a bug, said rather than written to a file.
+  for (size_t i = 0; i < image.mean.size(); ++i) {
+    const glm::vec3 both = image.mean[i] + image.variance[i];
+    if (!std::isfinite(both.x) || !std::isfinite(both.y) || !std::isfinite(both.z)) {
+      throw std::logic_error("the render produced a pixel that is not a finite number, (" +
+                             std::to_string(i % image.width) + ", " + std::to_string(i / image.width) + ")");
+    }
+  }
+  return image;
+}
 
 RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   RadianceImage image;

@@ -40,6 +40,7 @@
 #include "scene/gltf_animation.h"
 #include "scene/gltf_camera_extras.h"
 #include "scene/gltf_cameras.h"
+#include "scene/gltf_compression.h"
 #include "scene/gltf_context.h"
 #include "scene/gltf_extensions.h"
 #include "scene/gltf_extras.h"
@@ -329,9 +330,14 @@ private:
 }  // namespace
 
 Scene loadScene(const std::filesystem::path& file, const LoadOptions& options) {
-  const tinygltf::Model model = gltf::parseGltfFile(file);
+  // The warnings of a large file are summed up before the render (or the error) comes.
+  struct FlushWarnings {
+    ~FlushWarnings() { flushWarnings(); }
+  } flush;
+  tinygltf::Model model = gltf::parseGltfFile(file);
   const gltf::Context ctx{file.string(), model};
   gltf::checkExtensions(ctx);
+  gltf::decodeCompressedData(ctx, model);
   return SceneBuilder(ctx, options).build();
 }
 

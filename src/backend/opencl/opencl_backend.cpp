@@ -7,6 +7,7 @@
 #include "backend/opencl/cl_check.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
+#include "render/device_limits.h"
 
 namespace wp {
 namespace {
@@ -21,17 +22,14 @@ constexpr uint32_t kPassConstantsArgument = [] {
   return count;
 }();
 
-// Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray and its
-// radiance.
-constexpr uint64_t kBytesPerPath =
-    2 * sizeof(gpu::PathRay) + sizeof(gpu::HitRecord) + sizeof(gpu::ShadowRay) + sizeof(glm::vec4);
-
-std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
-
 }  // namespace
 
 OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate)
     : context_(std::make_unique<OpenClContext>(deviceIndex)), dispatchMode_(dispatch), validate_(validate) {
+  const OpenClDeviceInfo& device = context_->device;
+  const ByteLimit allocation{device.maxAllocationBytes, "CL_DEVICE_MAX_MEM_ALLOC_SIZE"};
+  limits_ = withBufferCap({"OpenCL device '" + device.name + "'", allocation, allocation,
+                           {device.globalMemoryBytes, "CL_DEVICE_GLOBAL_MEM_SIZE"}});
   buildVariant(false);
 }
 
@@ -64,31 +62,26 @@ OpenClBackend::~OpenClBackend() {
 std::string OpenClBackend::deviceName() const { return context_->device.name + " (OpenCL)"; }
 
 uint32_t OpenClBackend::maxPathsInFlight() const {
-  const OpenClDeviceInfo& device = context_->device;
   // The two ray queues share the largest buffer; path state may take half the memory, the
   // rest is for the scene and the image.
-  uint64_t byAllocation = device.maxAllocationBytes / (2 * sizeof(gpu::PathRay));
-  uint64_t byMemory = device.globalMemoryBytes / 2 / kBytesPerPath;
+  uint64_t byAllocation = limits_.writable.bytes / (2 * sizeof(gpu::PathRay));
+  uint64_t byMemory = limits_.memory.bytes / 2 / kBytesPerPath;
   return uint32_t(std::min({byAllocation, byMemory, uint64_t(UINT32_MAX)}));
+}
+
+uint64_t OpenClBackend::pathStateBytes(uint64_t maxPaths) const {
+  return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters);
+}
+
+uint64_t OpenClBackend::maxAccumulationPixels(uint32_t maxPaths) const {
+  const uint64_t used = pathStateBytes(maxPaths);
+  const uint64_t byMemory = limits_.memory.bytes > used ? (limits_.memory.bytes - used) / kAccumulationBytesPerPixel : 0;
+  return std::min(limits_.writable.bytes / kAccumulationBytesPerPixel, byMemory);
 }
 
 void OpenClBackend::bind(uint32_t binding, const OpenClBuffer& buffer) {
   for (cl_kernel kernel : variants_[motion_].kernels) {
     CL_CHECK(clSetKernelArg(kernel, binding, sizeof(cl_mem), buffer.argument()));
-  }
-}
-
-void OpenClBackend::checkMemory(uint64_t bytes, uint64_t largest, const char* largestName) const {
-  const OpenClDeviceInfo& device = context_->device;
-  if (bytes > device.globalMemoryBytes) {
-    throw Error("the render needs " + mebibytes(bytes) + " of device memory but OpenCL device '" + device.name +
-                "' has " + mebibytes(device.globalMemoryBytes) +
-                "; lower the image size or --max-paths, or pick another --device");
-  }
-  if (largest > device.maxAllocationBytes) {
-    throw Error(std::string("the ") + largestName + " buffer (" + mebibytes(largest) +
-                ") exceeds the largest allocation OpenCL device '" + device.name + "' allows (" +
-                mebibytes(device.maxAllocationBytes) + "); lower the image size or --max-paths, or pick another --device");
   }
 }
 
@@ -109,17 +102,12 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
   }
   cl_context context = context_->context;
   const auto arrays = sceneArrays(scene);
+  const uint64_t bytes = checkSceneFits(limits_, arrays);
   for (size_t i = 0; i < arrays.size(); ++i) {
     sceneBuffers_[i] = OpenClBuffer(context, CL_MEM_READ_ONLY, arrays[i].bytes, arrays[i].data);
-  }
-  sceneBytes_ = 0;
-  uint64_t largest = 0;
-  for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {
-    sceneBytes_ += sceneBuffers_[i].size();
-    largest = std::max(largest, sceneBuffers_[i].size());
     bind(kSceneBindings[i], sceneBuffers_[i]);
   }
-  checkMemory(sceneBytes_, largest, "scene");
+  sceneBytes_ = bytes;
 }
 
 void OpenClBackend::configure(const gpu::RenderParams& params) {
@@ -129,10 +117,8 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
   uint64_t maxPaths = params.maxPaths;
   uint64_t pixels = params.pixelCount;
   uint64_t rayBytes = 2 * maxPaths * sizeof(gpu::PathRay);
-  uint64_t accumulationBytes = 2 * pixels * sizeof(glm::vec4);
-  uint64_t total = sceneBytes_ + sizeof(params) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters) +
-                   accumulationBytes;
-  checkMemory(total, std::max(rayBytes, accumulationBytes), rayBytes >= accumulationBytes ? "ray queue" : "image");
+  uint64_t accumulationBytes = pixels * kAccumulationBytesPerPixel;
+  checkPathStateFits(limits_, rayBytes, pixels, pathStateBytes(maxPaths) + accumulationBytes);
 
   clFinish(context_->queue);
   cl_context context = context_->context;

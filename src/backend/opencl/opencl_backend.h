@@ -13,6 +13,7 @@
 #include "backend/opencl/opencl_context.h"
 #include "backend/opencl/opencl_program.h"
 #include "render/backend.h"
+#include "render/device_limits.h"
 
 namespace wp {
 
@@ -35,6 +36,7 @@ public:
 
   std::string deviceName() const override;
   uint32_t maxPathsInFlight() const override;
+  uint64_t maxAccumulationPixels(uint32_t maxPaths) const override;
   void loadScene(const GpuScene& scene) override;
   bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
@@ -55,11 +57,12 @@ private:
   std::array<uint32_t, WP_COUNTER_WORDS> readCounters();
   // Binds the buffers configure made (everything but the scene) to the current variant.
   void bindPathState();
-  // Throws unless a buffer set of `bytes` in total, the largest `largest`, fits the device.
-  void checkMemory(uint64_t bytes, uint64_t largest, const char* largestName) const;
+  // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
+  uint64_t pathStateBytes(uint64_t maxPaths) const;
   void checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& counters) const;
 
   std::unique_ptr<OpenClContext> context_;
+  DeviceLimits limits_;  // the device's, with the testing cap (withBufferCap)
   // The stage kernels built without ([0]) and with ([1]) motion blur; [1] only once a
   // moving scene was loaded. motion_ picks the ones loadScene chose.
   struct Variant {

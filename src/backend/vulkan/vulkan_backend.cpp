@@ -52,7 +52,7 @@ SpirvCode spirvFor(Kernel kernel, bool motion) {
 
 VkDescriptorType descriptorType(uint32_t binding) {
   switch (gpu::kBindings[binding].access) {
-    case gpu::BindingAccess::Uniform: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case gpu::BindingAccess::Uniform: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;  // bindings.glsl says why
     case gpu::BindingAccess::Texels:
     case gpu::BindingAccess::TexelView:
     case gpu::BindingAccess::Constant: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -61,6 +61,9 @@ VkDescriptorType descriptorType(uint32_t binding) {
   }
   return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
+
+// Bytes of one texel of the view a texel-buffer binding is read through (bindings.glsl).
+uint64_t texelBytes(uint32_t binding) { return gpu::kBindings[binding].format == gpu::TexelFormat::R32ui ? 4 : 16; }
 
 // Storage for the queues, also read as texels by the next stage.
 constexpr VkBufferUsageFlags kQueueUsage =
@@ -146,10 +149,23 @@ std::string VulkanBackend::deviceName() const {
 uint32_t VulkanBackend::maxPathsInFlight() const {
   const VkPhysicalDeviceLimits& limits = context_->properties.limits;
   uint64_t byDispatch = uint64_t(limits.maxComputeWorkGroupCount[0]) * WP_WORKGROUP_SIZE;
-  // The two ray queues share one buffer, bound whole as storage and as RGBA32UI texels.
-  uint64_t byStorage = limits.maxStorageBufferRange / (2 * sizeof(gpu::PathRay));
+  // The two ray queues share one buffer, bound whole as storage and as RGBA32UI texels; path
+  // state may take half the memory, the rest is for the scene and the image.
+  uint64_t byStorage = context_->limits.writable.bytes / (2 * sizeof(gpu::PathRay));
   uint64_t byTexels = uint64_t(limits.maxTexelBufferElements) / (2 * sizeof(gpu::PathRay) / 16);
-  return uint32_t(std::min({byDispatch, byStorage, byTexels, uint64_t(UINT32_MAX)}));
+  uint64_t byMemory = context_->limits.memory.bytes / 2 / kBytesPerPath;
+  return uint32_t(std::min({byDispatch, byStorage, byTexels, byMemory, uint64_t(UINT32_MAX)}));
+}
+
+uint64_t VulkanBackend::pathStateBytes(uint64_t maxPaths) const {
+  return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters);
+}
+
+uint64_t VulkanBackend::maxAccumulationPixels(uint32_t maxPaths) const {
+  const DeviceLimits& limits = context_->limits;
+  const uint64_t used = pathStateBytes(maxPaths);
+  const uint64_t byMemory = limits.memory.bytes > used ? (limits.memory.bytes - used) / kAccumulationBytesPerPixel : 0;
+  return std::min(limits.writable.bytes / kAccumulationBytesPerPixel, byMemory);
 }
 
 void VulkanBackend::createLayouts() {
@@ -210,10 +226,20 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   }
   motion_ = motion;
   const auto arrays = sceneArrays(scene);
+  const DeviceLimits& limits = context_->limits;
+  const uint64_t bytes = checkSceneFits(limits, arrays);
+  for (size_t i = 0; i < arrays.size(); ++i) {
+    const uint64_t texel = texelBytes(kSceneBindings[i]);
+    checkFits(limits, std::string("the scene's ") + arrays[i].name, arrays[i].bytes,
+              {context_->properties.limits.maxTexelBufferElements * texel, "maxTexelBufferElements"},
+              "render a smaller scene (fewer triangles, smaller textures or sky), or use --backend opencl");
+  }
+  sceneBytes_ = 0;  // nothing held while the old buffers go and the new ones come
   for (size_t i = 0; i < arrays.size(); ++i) {
     sceneBuffers_[i] = VulkanBuffer(*context_, arrays[i].bytes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
     sceneBuffers_[i].upload(arrays[i].data, arrays[i].bytes);
   }
+  sceneBytes_ = bytes;
   if (params_.handle() != VK_NULL_HANDLE) {
     writeDescriptors();
   }
@@ -228,8 +254,11 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
     throw Error("internal: " + std::to_string(maxPaths) + " paths in flight exceed the device's " +
                 std::to_string(maxPathsInFlight()));
   }
+  const uint64_t accumulationBytes = uint64_t(params.pixelCount) * kAccumulationBytesPerPixel;
+  checkPathStateFits(context_->limits, 2ull * maxPaths * sizeof(gpu::PathRay), params.pixelCount,
+                     pathStateBytes(maxPaths) + accumulationBytes);
   vkDeviceWaitIdle(context_->device);
-  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memcpy(params_.mapped(), &params, sizeof(params));
 
   bool resized = rays_.handle() == VK_NULL_HANDLE || hits_.size() < maxPaths * sizeof(gpu::HitRecord);
@@ -243,8 +272,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
   }
   pixelCount_ = params.pixelCount;
-  accumulation_ = VulkanBuffer(*context_, 2ull * pixelCount_ * sizeof(glm::vec4),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  accumulation_ = VulkanBuffer(*context_, accumulationBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   context_->runOnce([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
   });
@@ -279,8 +307,7 @@ void VulkanBackend::writeDescriptors() {
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = type;
     if (type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
-      bool scalars = gpu::kBindings[i].format == gpu::TexelFormat::R32ui;
-      views[i] = texelView(*buffers[i], scalars ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_UINT);
+      views[i] = texelView(*buffers[i], texelBytes(i) == 4 ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_UINT);
       writes[i].pTexelBufferView = &views[i];
     } else {
       infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
@@ -291,18 +318,13 @@ void VulkanBackend::writeDescriptors() {
 }
 
 VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer, VkFormat format) {
-  uint64_t texelBytes = format == VK_FORMAT_R32_UINT ? 4 : 16;
-  uint64_t texels = buffer.size() / texelBytes;
-  uint64_t limit = context_->properties.limits.maxTexelBufferElements;
-  if (texels > limit) {
-    throw Error("a scene or queue buffer of " + std::to_string(texels) + " texels exceeds this device's limit of " +
-                std::to_string(limit) + "; use a smaller scene or --max-paths");
-  }
+  // loadScene and maxPathsInFlight keep every buffer within maxTexelBufferElements.
+  uint64_t bytesPerTexel = format == VK_FORMAT_R32_UINT ? 4 : 16;
   VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
   info.buffer = buffer.handle();
   info.format = format;
   info.offset = 0;
-  info.range = texels * texelBytes;
+  info.range = buffer.size() / bytesPerTexel * bytesPerTexel;
   VkBufferView view;
   VK_CHECK(vkCreateBufferView(context_->device, &info, nullptr, &view));
   texelViews_.push_back(view);

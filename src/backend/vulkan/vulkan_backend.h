@@ -20,6 +20,7 @@ public:
 
   std::string deviceName() const override;
   uint32_t maxPathsInFlight() const override;
+  uint64_t maxAccumulationPixels(uint32_t maxPaths) const override;
   void loadScene(const GpuScene& scene) override;
   bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
@@ -30,6 +31,8 @@ public:
   void writeAccumulation(const Accumulation& accumulation) override;
 
 private:
+  // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
+  uint64_t pathStateBytes(uint64_t maxPaths) const;
   void createLayouts();
   // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout.
   VkPipeline createPipeline(const uint32_t* words, size_t bytes);
@@ -63,6 +66,7 @@ private:
   VulkanBuffer accumulation_;
   VulkanBuffer accumulationReadback_;  // staging kept across readAccumulation calls (the viewer's frames)
   uint32_t pixelCount_ = 0;
+  uint64_t sceneBytes_ = 0;  // of the loaded scene's arrays
 
   // Kernel of each timestamp written in the current pass (query i ends kernel i's span).
   std::vector<int> queryKernels_;
