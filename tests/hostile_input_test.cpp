@@ -161,6 +161,17 @@ TEST(HostileScene, EmissionAboveTheRadianceLimitIsAnError) {
   expectRefused(writeScene(dir, factor), "above 1e+12");
 }
 
+TEST(HostileScene, ALampBrighterThanAnyRealOneIsAnError) {
+  // KHR_lights_punctual intensity 1e37 candela: an image of Inf and NaN, caught as an internal
+  // error, before the lamp got the bound emission and skies have.
+  Json scene = triangleScene();
+  scene["extensionsUsed"] = {"KHR_lights_punctual"};
+  scene["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 1e37}}}}}}};
+  scene["nodes"].push_back({{"translation", {0.2, 0.2, -0.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  scene["scenes"][0]["nodes"].push_back(1);
+  expectRefused(writeScene(scratchDirectory("hostile-lamp"), scene), "brighter than any real lamp");
+}
+
 TEST(HostileScene, RepeatedWarningsAreFoldedIntoOneLineWithACount) {
   // 1,000 nodes with a scale of 0 printed 1,000 warnings.
   const fs::path dir = scratchDirectory("hostile-warnings");

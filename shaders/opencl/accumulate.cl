@@ -2,7 +2,7 @@
 // (the squares give the per-pixel variance). One work item per pixel of the pass walks
 // that pixel's slots in sample order, so there are no races and the sum order is fixed.
 #include "opencl/bindings.h"
-#include "common/stages.h"
+#include "common/accumulation.h"
 
 WP_KERNEL void accumulate(WP_KERNEL_ARGS) {
   uint t = get_global_id(0);
@@ -15,7 +15,7 @@ WP_KERNEL void accumulate(WP_KERNEL_ARGS) {
   float4 sum = accumulation[pixel];
   float4 sumSquares = accumulation[pixels + pixel];
   for (uint slot = t; slot < pathCount; slot += pixels) {
-    float3 l = pathRadiance[slot].xyz;
+    float3 l = accumulableRadiance(pathRadiance[slot].xyz);
     sum.xyz += l;
     sumSquares.xyz += l * l;
   }

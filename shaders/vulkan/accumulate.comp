@@ -4,6 +4,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "bindings.glsl"
+#include "common/accumulation.h"
 
 void main() {
   uint t = gl_GlobalInvocationID.x;
@@ -16,7 +17,7 @@ void main() {
   vec4 sum = accumulation[pixel];
   vec4 sumSquares = accumulation[pixels + pixel];
   for (uint slot = t; slot < pathCount; slot += pixels) {
-    vec3 l = pathRadiance[slot].xyz;
+    vec3 l = accumulableRadiance(pathRadiance[slot].xyz);
     sum.xyz += l;
     sumSquares.xyz += l * l;
   }
