@@ -8,7 +8,7 @@ WP_BEGIN
 
 // The largest radiance one path adds to its pixel's sums (per channel): a pixel sums up to
 // 2^20 samples (--spp's limit) and their squares in floats, and 2^20 * (1e16)^2 stays below
-// WP_FLT_MAX. Inputs are bounded far below it (src/scene/radiance_limit.h), but a lamp a
+// WP_FLT_MAX. Inputs are bounded far below it (src/scene/scene_limits.h), but a lamp a
 // hair's breadth from a surface (I / r^2) is not; an overflow would make the pixel's variance,
 // then its mean, NaN.
 #define WP_MAX_SAMPLE_RADIANCE 1e16f

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "scene/scene_limits.h"
+
 namespace wp::gltf {
 
 namespace {
@@ -86,6 +88,20 @@ ElementRange locate(const Context& ctx, int index, const std::string& where, siz
   return {buffer.data() + view.byteOffset + accessor.byteOffset, accessor.count, stride};
 }
 
+// A number the renderer can use: finite and within ±kMaxCoordinate (scene_limits.h).
+bool plausible(float value) { return std::isfinite(value) && std::fabs(value) <= kMaxCoordinate; }
+
+template <int N>
+bool plausible(const glm::vec<N, float>& v) {
+  for (int i = 0; i < N; ++i) {
+    if (!plausible(v[i])) return false;
+  }
+  return true;
+}
+
+// What the message says of a value that is not plausible.
+constexpr const char* kNotPlausible = "is not finite, or is beyond ±1e12";
+
 const tinygltf::Accessor& lookUp(const Context& ctx, int index, const std::string& where, const char* role) {
   if (index < 0 || static_cast<size_t>(index) >= ctx.model.accessors.size()) {
     fail(ctx, where,
@@ -111,9 +127,9 @@ std::vector<T> readFloatVectors(const Context& ctx, int index, const std::string
   std::vector<T> values(range.count);
   for (size_t i = 0; i < range.count; ++i) {
     std::memcpy(&values[i], range.first + i * range.stride, sizeof(T));
-    if (glm::any(glm::isnan(values[i])) || glm::any(glm::isinf(values[i]))) {
+    if (!plausible(values[i])) {
       fail(ctx, where, "vertex " + std::to_string(i) + " of the " + attribute + " accessor " + std::to_string(index) +
-                           " is not finite; re-export the file");
+                           " " + kNotPlausible + "; re-export the file");
     }
   }
   return values;
@@ -134,10 +150,10 @@ std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int index, const st
   for (size_t i = 0; i < range.count; ++i) {
     std::memcpy(&positions[i], range.first + i * range.stride, sizeof(glm::vec3));
     const glm::vec3& p = positions[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+    if (!plausible(p)) {
       fail(ctx, where,
-           "vertex " + std::to_string(i) + " of the " + attribute + " accessor " + std::to_string(index) +
-               " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+           "vertex " + std::to_string(i) + " of the " + attribute + " accessor " + std::to_string(index) + " " +
+               kNotPlausible + " (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
                "); re-export the file");
     }
   }
@@ -229,9 +245,9 @@ FloatElements readFloats(const Context& ctx, int index, const std::string& where
           value = float(v) / 65535.0f;
         }
       }
-      if (!std::isfinite(value)) {
+      if (!plausible(value)) {
         fail(ctx, where, "element " + std::to_string(i) + " of the " + role + " accessor " + std::to_string(index) +
-                             " is not finite; re-export the file");
+                             " " + kNotPlausible + "; re-export the file");
       }
       out.values[i * out.components + c] = value;
     }

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/log.h"
-#include "scene/radiance_limit.h"
+#include "scene/scene_limits.h"
 
 namespace wp::gltf {
 
@@ -41,7 +41,7 @@ PunctualLight convert(const Context& ctx, const tinygltf::Light& light, size_t i
     fail(ctx, where, "intensity must be a finite number >= 0 (candela, or lux for a directional light); fix the light");
   }
   const double watts = light.intensity / kLumensPerWatt;
-  // The same bound as emission and skies (radiance_limit.h), on W/sr or W/m^2.
+  // The same bound as emission and skies (scene_limits.h), on W/sr or W/m^2.
   if (std::max({color[0], color[1], color[2]}) * watts > kMaxRadiance) {
     fail(ctx, where, "its intensity times its color is above " + std::to_string(int64_t(kMaxRadiance * kLumensPerWatt)) +
                          " candela (or lux), brighter than any real lamp; lower it");
