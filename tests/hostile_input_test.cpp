@@ -150,6 +150,23 @@ TEST(HostileScene, AnImageBufferViewPastItsBufferIsAnError) {
   expectRefused(writeScene(scratchDirectory("hostile-image-view"), scene), "reaches past its buffer");
 }
 
+TEST(HostileScene, CoordinatesBeyondReachAreRefused) {
+  // fuzz_gltf: vertices near the largest float made the BVH builder convert NaN to an integer
+  // (UBSan), and would overflow every ray; a node scaled by 1e20 does the same to a sane mesh.
+  const fs::path dir = scratchDirectory("hostile-coordinates");
+  const float far[] = {0, 0, -1, 3e38f, 0, -1, 0, 1, -1};
+  const uint16_t indices[] = {0, 1, 2, 0};
+  std::vector<uint8_t> bytes(sizeof(far) + sizeof(indices));
+  std::memcpy(bytes.data(), far, sizeof(far));
+  std::memcpy(bytes.data() + sizeof(far), indices, sizeof(indices));
+  Json vertex = triangleScene();
+  vertex["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bytes);
+  expectRefused(writeScene(dir, vertex), "is beyond ±1e12");
+  Json scaled = triangleScene();
+  scaled["nodes"][0]["scale"] = {1e20, 1e20, 1e20};
+  expectRefused(writeScene(dir, scaled), "reaches coordinate 1e+20, beyond the ±1e12 scene units", {"--sky", "none"});
+}
+
 TEST(HostileScene, EmissionAboveTheRadianceLimitIsAnError) {
   // emissiveStrength 1e39 gave infinite radiance and a NaN variance, with exit 0.
   const fs::path dir = scratchDirectory("hostile-emission");
@@ -159,6 +176,17 @@ TEST(HostileScene, EmissionAboveTheRadianceLimitIsAnError) {
   Json factor = triangleScene();
   factor["materials"][0]["emissiveFactor"] = {1e30, 0, 0};
   expectRefused(writeScene(dir, factor), "above 1e+12");
+}
+
+TEST(HostileScene, ALampBrighterThanAnyRealOneIsAnError) {
+  // KHR_lights_punctual intensity 1e37 candela: an image of Inf and NaN, caught as an internal
+  // error, before the lamp got the bound emission and skies have.
+  Json scene = triangleScene();
+  scene["extensionsUsed"] = {"KHR_lights_punctual"};
+  scene["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 1e37}}}}}}};
+  scene["nodes"].push_back({{"translation", {0.2, 0.2, -0.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  scene["scenes"][0]["nodes"].push_back(1);
+  expectRefused(writeScene(scratchDirectory("hostile-lamp"), scene), "brighter than any real lamp");
 }
 
 TEST(HostileScene, RepeatedWarningsAreFoldedIntoOneLineWithACount) {

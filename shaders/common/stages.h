@@ -152,7 +152,7 @@ WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uin
   vec4 sumSquares = WP_LOAD(accumulation, pixels + pixel);
   for (uint slot = t; slot < pathCount; slot += pixels) {
     // Only the rgb is read: on lavapipe every component is a scalar load per lane.
-    vec3 l = WP_XYZ(WP_BUFFER(pathRadiance)[slot]);
+    vec3 l = accumulableRadiance(WP_XYZ(WP_BUFFER(pathRadiance)[slot]));
     WP_ADD_XYZ(sum, l);
     WP_ADD_XYZ(sumSquares, l * l);
   }

@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -14,7 +15,9 @@
 #include "bvh/bvh_builder.h"
 #include "bvh/instance_motion.h"
 #include "bvh/light_emission.h"
+#include "core/error.h"
 #include "core/log.h"
+#include "scene/scene_limits.h"
 #include "shaders/common/environment.h"
 #include "shaders/common/traverse.h"
 
@@ -167,9 +170,25 @@ bool isInvertible(const glm::mat4& toWorld) {
 
 // Instances before the top-level build: their GPU record, world bounds (over the shutter
 // for moving ones), motion keys and source.
+// Throws wp::Error when `bounds` (of `what`, in world space) reach beyond ±kMaxCoordinate or
+// are not finite: transforms that place an object that far (a node scaled by 1e20, say)
+// would overflow the traversal's arithmetic.
+void checkWithinReach(const Aabb& bounds, const std::string& what) {
+  const glm::vec3 lo = glm::abs(bounds.min), hi = glm::abs(bounds.max);
+  const float reach = std::max({lo.x, lo.y, lo.z, hi.x, hi.y, hi.z});
+  if (!(reach <= kMaxCoordinate)) {
+    char text[64];
+    std::snprintf(text, sizeof(text), " reaches coordinate %g", double(reach));
+    throw Error(what + text +
+                ", beyond the ±1e12 scene units wavepath traces; fix the transforms that place it (or the animation "
+                "that moves it)");
+  }
+}
+
 struct InstanceCandidates {
   std::vector<gpu::GpuInstance> records;
   std::vector<Aabb> worldBounds;
+  std::vector<std::string> names;  // for messages: "instance 3 of mesh 'Cube'"
   std::vector<uint32_t> mesh;  // WP_INVALID for spheres
   std::vector<glm::mat4> objectToWorld;
   std::vector<std::optional<MotionKeys>> motion;
@@ -192,6 +211,7 @@ struct InstanceCandidates {
     }
     records.push_back(makeInstance(glm::inverse(toWorld), info));
     worldBounds.push_back(keys ? sweptBounds(*keys, objectBounds) : transformBox(toWorld, objectBounds));
+    names.push_back(what);
     mesh.push_back(meshIndex);
     objectToWorld.push_back(toWorld);
     motion.push_back(keys);
@@ -412,7 +432,9 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
 
   std::vector<glm::vec3> centers;
   Aabb sceneBounds;
-  for (const Aabb& b : candidates.worldBounds) {
+  for (size_t i = 0; i < candidates.worldBounds.size(); ++i) {
+    const Aabb& b = candidates.worldBounds[i];
+    checkWithinReach(b, candidates.names[i]);
     centers.push_back(b.center());
     sceneBounds.grow(b);
   }

@@ -232,7 +232,7 @@ Accumulation WavefrontRenderer::accumulation() {
 
 RadianceImage WavefrontRenderer::image() {
   RadianceImage image = imageOf(tiles_.size() > 1 ? tiledSums_ : backend_.readAccumulation());
-  // What a scene may hold is bounded (radiance_limit.h, the loader's checks) so that no sum
+  // What a scene may hold is bounded (scene_limits.h, the loader's checks) so that no sum
   // overflows: a pixel that is not finite is a bug, said rather than written to a file.
   for (size_t i = 0; i < image.mean.size(); ++i) {
     const glm::vec3 both = image.mean[i] + image.variance[i];

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "image/hdr_reader.h"
 #include "image/image_io.h"
-#include "scene/radiance_limit.h"
+#include "scene/scene_limits.h"
 #include "shaders/common/sampling.h"
 
 namespace wp {

@@ -30,7 +30,7 @@ struct EnvironmentMap {
 // density of a texel is proportional to its luminance times sin(theta) at its row's centre,
 // as environment.h expects; a black map samples (nearly) uniformly over the sphere. Requires width, height >= 1 and
 // radiance.size() == width * height; throws wp::Error for a texel that is not finite or is
-// above kMaxRadiance (radiance_limit.h). Negative
+// above kMaxRadiance (scene_limits.h). Negative
 // components, which radiance cannot have but filtered or compressed images sometimes hold,
 // are clamped to 0.
 EnvironmentMap makeEnvironmentMap(uint32_t width, uint32_t height, const std::vector<glm::vec3>& radiance);
@@ -38,7 +38,7 @@ EnvironmentMap makeEnvironmentMap(uint32_t width, uint32_t height, const std::ve
 // Reads an equirectangular sky from a Radiance .hdr (readHdr) or an OpenEXR .exr (R, G, B
 // through readExr) file and builds its distribution. Throws wp::Error, one line naming the
 // file and what to do, when it is missing, of another format, unreadable, or holds a texel
-// that is not finite or above kMaxRadiance (radiance_limit.h).
+// that is not finite or above kMaxRadiance (scene_limits.h).
 EnvironmentMap loadEnvironmentMap(const std::filesystem::path& path);
 
 // Throws wp::Error, naming --sky-intensity, when `intensity` times the sky's brightest texel

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <limits>
 
+#include "scene/scene_limits.h"
+
 namespace wp::gltf {
 
 namespace {
@@ -181,6 +183,20 @@ ElementRange locate(const Context& ctx, int index, const std::string& where, siz
   return range;
 }
 
+// A number the renderer can use: finite and within ±kMaxCoordinate (scene_limits.h).
+bool plausible(float value) { return std::isfinite(value) && std::fabs(value) <= kMaxCoordinate; }
+
+template <int N>
+bool plausible(const glm::vec<N, float>& v) {
+  for (int i = 0; i < N; ++i) {
+    if (!plausible(v[i])) return false;
+  }
+  return true;
+}
+
+// What the message says of a value that is not plausible.
+constexpr const char* kNotPlausible = "is not finite, or is beyond ±1e12";
+
 const tinygltf::Accessor& lookUp(const Context& ctx, int index, const std::string& where, const char* role) {
   if (index < 0 || static_cast<size_t>(index) >= ctx.model.accessors.size()) {
     fail(ctx, where,
@@ -249,9 +265,9 @@ std::vector<T> readVectors(const Context& ctx, int index, const std::string& whe
   for (size_t i = 0; i < range.count; ++i) {
     const unsigned char* element = range.first + i * range.stride;
     for (int c = 0; c < T::length(); ++c) values[i][c] = componentValue(element + c * size, component, accessor.normalized);
-    if (glm::any(glm::isnan(values[i])) || glm::any(glm::isinf(values[i]))) {
+    if (!plausible(values[i])) {
       fail(ctx, where, "vertex " + std::to_string(i) + " of the " + attribute + " accessor " + std::to_string(index) +
-                           " is not finite; re-export the file");
+                           " " + kNotPlausible + "; re-export the file");
     }
   }
   return values;
@@ -322,9 +338,9 @@ FloatElements readFloats(const Context& ctx, int index, const std::string& where
     const unsigned char* element = range.first + i * range.stride;
     for (size_t c = 0; c < out.components; ++c) {
       const float value = componentValue(element + c * size, type, true);
-      if (!std::isfinite(value)) {
+      if (!plausible(value)) {
         fail(ctx, where, "element " + std::to_string(i) + " of the " + role + " accessor " + std::to_string(index) +
-                             " is not finite; re-export the file");
+                             " " + kNotPlausible + "; re-export the file");
       }
       out.values[i * out.components + c] = value;
     }

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "scene/gltf_textures.h"
-#include "scene/radiance_limit.h"
+#include "scene/scene_limits.h"
 
 namespace wp::gltf {
 

@@ -1,8 +1,11 @@
-// A long render holds its memory: thousands of passes must not grow the process (the soak
-// benchmark, tools/bench_soak.cpp, measures it over 10,000 samples per pixel).
+// The per-pixel sums passes accumulate: what one path may add to them (finite, bounded), and
+// that thousands of passes do not grow the process (the soak benchmark, tools/bench_soak.cpp,
+// measures it over 10,000 samples per pixel).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -10,6 +13,7 @@
 #include "bvh/gpu_scene.h"
 #include "render/wavefront.h"
 #include "scene/gltf_loader.h"
+#include "shaders/common/accumulation.h"
 #include "support/run_wavepath.h"
 
 namespace wp::test {
@@ -25,6 +29,16 @@ size_t executableMappings() {
     count += permissions.find('x') != std::string::npos ? 1 : 0;
   }
   return count;
+}
+
+TEST(Accumulation, APathAddsAFiniteBoundedRadiance) {
+  // 2^20 samples (--spp's limit) of the largest radiance, squared and summed, stay finite.
+  const float largest = WP_MAX_SAMPLE_RADIANCE;
+  EXPECT_TRUE(std::isfinite(largest * largest * float(1u << 20)));
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(gpu::accumulableRadiance(glm::vec3(0.5f, 2.0f, 1e15f)), glm::vec3(0.5f, 2.0f, 1e15f));  // untouched
+  EXPECT_EQ(gpu::accumulableRadiance(glm::vec3(inf, 1e30f, -inf)), glm::vec3(largest, largest, -largest));
+  EXPECT_EQ(gpu::accumulableRadiance(glm::vec3(nan, 3.0f, nan)), glm::vec3(0.0f, 3.0f, 0.0f));
 }
 
 TEST(LongRender, PassesCompileNoShaders) {

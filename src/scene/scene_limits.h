@@ -1,4 +1,5 @@
-// The brightest radiance a scene may hold, so that no sum on the GPU overflows.
+// The brightest radiance and the farthest coordinate a scene may hold, so that no sum or
+// product on the GPU overflows.
 #pragma once
 
 namespace wp {
@@ -10,5 +11,11 @@ namespace wp {
 // infinite, which makes the pixel's variance NaN. Brighter inputs are refused, not clamped,
 // so that no picture is silently wrong.
 inline constexpr double kMaxRadiance = 1e12;
+
+// The farthest coordinate (scene units) a vertex, keyframe or placed object may have: 1e12,
+// some 7 times the distance to the sun in metres. Ray tracing multiplies coordinates (cross
+// products of edges, squared distances, areas times radiance): beyond about 1e18 those
+// overflow single precision, and long before it nothing but noise is left of the geometry.
+inline constexpr double kMaxCoordinate = 1e12;
 
 }  // namespace wp
