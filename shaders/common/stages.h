@@ -5,6 +5,7 @@
 #ifndef WP_STAGES_H
 #define WP_STAGES_H
 
+#include "accumulation.h"
 #include "binding_table.h"
 #include "integrator.h"
 #include "queues.h"
