@@ -82,12 +82,22 @@ protected:
   fs::path checkpoint;
 };
 
+// Radiance, variance and the feature passes (which must be there) the same bit for bit.
 void expectBitIdentical(const RadianceImage& a, const RadianceImage& b) {
   ASSERT_EQ(a.mean.size(), b.mean.size());
   ASSERT_EQ(a.variance.size(), b.variance.size());
+  ASSERT_EQ(a.albedo.size(), a.mean.size());
+  ASSERT_EQ(a.normal.size(), a.mean.size());
+  ASSERT_EQ(a.depth.size(), a.mean.size());
+  ASSERT_EQ(b.albedo.size(), b.mean.size());
+  ASSERT_EQ(b.normal.size(), b.mean.size());
+  ASSERT_EQ(b.depth.size(), b.mean.size());
   for (size_t i = 0; i < a.mean.size(); ++i) {
     ASSERT_EQ(a.mean[i], b.mean[i]) << "pixel " << i;
     ASSERT_EQ(a.variance[i], b.variance[i]) << "pixel " << i;
+    ASSERT_EQ(a.albedo[i], b.albedo[i]) << "pixel " << i;
+    ASSERT_EQ(a.normal[i], b.normal[i]) << "pixel " << i;
+    ASSERT_EQ(a.depth[i], b.depth[i]) << "pixel " << i;
   }
 }
 
@@ -162,6 +172,19 @@ TEST_P(Farm, FourSampleBatchesMergeIntoTheWholeRender) {
       if (m > 0) largestMean = std::max(largestMean, meanError / m);
       largestVariance = std::max(largestVariance, varianceError / ((m * m + 64.0 * v) / 63.0));
     }
+  }
+  // The feature passes are means too, of terms at most 1 in size (albedo, normal) or
+  // positive (depth): within 64 u of the sum of the terms' sizes.
+  ASSERT_EQ(merged.albedo.size(), whole.albedo.size());
+  ASSERT_EQ(merged.normal.size(), whole.normal.size());
+  ASSERT_EQ(merged.depth.size(), whole.depth.size());
+  ASSERT_FALSE(whole.depth.empty());
+  for (size_t i = 0; i < whole.mean.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(merged.albedo[i][c], whole.albedo[i][c], 1e-5) << "pixel " << i << " channel " << c;
+      EXPECT_NEAR(merged.normal[i][c], whole.normal[i][c], 1e-5) << "pixel " << i << " channel " << c;
+    }
+    EXPECT_NEAR(merged.depth[i], whole.depth[i], 1e-5 * whole.depth[i]) << "pixel " << i;
   }
   std::printf("merged 4 batches: %zu of %zu means differ, largest relative difference of a mean %.3g, largest difference of a variance %.3g of the mean square\n",
               differing, 3 * whole.mean.size(), largestMean, largestVariance);

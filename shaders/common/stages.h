@@ -48,7 +48,7 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint width = params.width;
   vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
   CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, make_vec2(lensU, lensV));
-  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u);
+  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u, 0u);
 }
 
 // The closest hit of `ray`, as shade reads it.
@@ -109,6 +109,16 @@ WP_FN ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, u
   if (r.radiance.x != 0.0f || r.radiance.y != 0.0f || r.radiance.z != 0.0f) {
     addPathRadiance(WP_BUFFERS_ARG rayPathSlot(ray), r.radiance);
   }
+  if ((r.flags & WP_SHADE_FEATURES) != 0u) {
+    // Every path is shaded at bounce 0, which sets all its features; a later vertex that
+    // takes the albedo and normal keeps that depth.
+    uint slot = rayPathSlot(ray);
+    PathFeatures f = r.features;
+    if (rayBounce(ray) > 0u) {
+      f = withDepth(f, featureDepth(WP_BUFFER(pathFeatures)[slot]));
+    }
+    WP_BUFFER(pathFeatures)[slot] = f;
+  }
   return r;
 }
 
@@ -139,9 +149,10 @@ WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
   }
 }
 
-// Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance
-// and its square to the pixel's running sums (the squares give the per-pixel variance). It
-// walks the pixel's slots in sample order, so there are no races and the sum order is fixed.
+// Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance,
+// its square (which gives the per-pixel variance) and their feature passes to the pixel's
+// running sums (accumulation.h). It walks the pixel's slots in sample order, so there are no
+// races and the sum order is fixed.
 WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
   uint pixels = params.pixelCount;
   uint pathCount = pc.pathCount;
@@ -149,16 +160,27 @@ WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uin
     return;
   }
   uint pixel = (pc.firstPixel + t) % pixels;
-  vec4 sum = WP_LOAD(accumulation, pixel);
-  vec4 sumSquares = WP_LOAD(accumulation, pixels + pixel);
+  uint sumAt = accumulationIndex(WP_LAYER_RADIANCE, pixel, pixels);
+  uint squaresAt = accumulationIndex(WP_LAYER_RADIANCE_SQUARES, pixel, pixels);
+  uint albedoDepthAt = accumulationIndex(WP_LAYER_ALBEDO_DEPTH, pixel, pixels);
+  uint normalAt = accumulationIndex(WP_LAYER_NORMAL, pixel, pixels);
+  vec4 sum = WP_LOAD(accumulation, sumAt);
+  vec4 sumSquares = WP_LOAD(accumulation, squaresAt);
+  vec4 albedoDepth = WP_LOAD(accumulation, albedoDepthAt);
+  vec4 normal = WP_LOAD(accumulation, normalAt);
   for (uint slot = t; slot < pathCount; slot += pixels) {
     // Only the rgb is read: on lavapipe every component is a scalar load per lane.
     vec3 l = accumulableRadiance(WP_XYZ(WP_BUFFER(pathRadiance)[slot]));
     WP_ADD_XYZ(sum, l);
     WP_ADD_XYZ(sumSquares, l * l);
+    PathFeatures f = WP_BUFFER(pathFeatures)[slot];
+    albedoDepth = albedoDepth + f.albedoDepth;
+    WP_ADD_XYZ(normal, featureNormal(f));
   }
-  WP_BUFFER(accumulation)[pixel] = sum;
-  WP_BUFFER(accumulation)[pixels + pixel] = sumSquares;
+  WP_BUFFER(accumulation)[sumAt] = sum;
+  WP_BUFFER(accumulation)[squaresAt] = sumSquares;
+  WP_BUFFER(accumulation)[albedoDepthAt] = albedoDepth;
+  WP_BUFFER(accumulation)[normalAt] = normal;
 }
 
 WP_END

@@ -149,6 +149,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   checkValidation(choice);
   const DisplaySettings display = displaySettings(o.camera, scene.camera.optics, image);
   image.record = renderRecord(o.settings, here.identity, display, o.camera.autoExposure);
+  keepSelectedPasses(image, o.passes);
   writeImage(output, image, display);
   noteIfAlmostBlack(image, display, scene, output);
   if (!o.checkpoint.path.empty()) std::filesystem::remove(o.checkpoint.path);
@@ -218,6 +219,18 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
           },
           "SECONDS"))
       ->needs(checkpoint);
+  cmd->add_option_function<std::string>(
+         "--passes",
+         [&o](const std::string& text) {
+           if (text == "list") {
+             std::fputs(passListText().c_str(), stdout);
+             throw CLI::Success();
+           }
+           o.passes = parsePasses(text);
+         },
+         "Feature passes the EXR holds besides the radiance, for denoisers: a comma-separated list of albedo, "
+         "normal, depth, or all (the default), none; 'list' prints what each holds")
+      ->check(parsedBy([](const std::string& text) { if (text != "list") parsePasses(text); }, "LIST"));
   cmd->add_flag("--resume", o.checkpoint.resume,
                 "Go on from the --checkpoint FILE of an interrupted render (same scene and flags)")
       ->needs(checkpoint);

@@ -22,6 +22,7 @@ static_assert(sizeof(RenderParams) == 192);
 static_assert(sizeof(PathRay) == 64);
 static_assert(sizeof(HitRecord) == 16);
 static_assert(sizeof(ShadowRay) == 48);
+static_assert(sizeof(PathFeatures) == 32);
 static_assert(sizeof(QueueCounters) == WP_COUNTER_WORDS * 4);
 static_assert(offsetof(QueueCounters, extendDispatch) == WP_COUNTER_EXTEND_DISPATCH * 4);
 static_assert(offsetof(QueueCounters, connectDispatch) == WP_COUNTER_CONNECT_DISPATCH * 4);

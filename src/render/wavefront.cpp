@@ -80,10 +80,7 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   pathsDone_ = firstPath_;
   tiles_ = splitIntoTiles(region, backend_.maxAccumulationPixels(settings_.maxPaths));
   tiledSums_ = {};
-  if (tiles_.size() > 1) {
-    tiledSums_.sum.assign(region.pixels(), glm::vec4(0.0f));
-    tiledSums_.sumSquares.assign(region.pixels(), glm::vec4(0.0f));
-  }
+  if (tiles_.size() > 1) tiledSums_ = Accumulation::zeros(region.pixels());
   configureTile(0);
 }
 
@@ -114,8 +111,10 @@ void WavefrontRenderer::storeTile() {
   const Accumulation tile = backend_.readAccumulation();
   const PixelRegion region = settings_.pixelRegion();
   const size_t at = size_t(tiles_[tile_].y0 - region.y0) * region.width();  // tiles are bands of whole rows
-  std::copy(tile.sum.begin(), tile.sum.end(), tiledSums_.sum.begin() + long(at));
-  std::copy(tile.sumSquares.begin(), tile.sumSquares.end(), tiledSums_.sumSquares.begin() + long(at));
+  for (uint32_t layer = 0; layer < WP_ACCUMULATION_LAYERS; ++layer) {
+    const std::vector<glm::vec4>& from = *tile.layers()[layer];
+    std::copy(from.begin(), from.end(), tiledSums_.layers()[layer]->begin() + long(at));
+  }
 }
 
 void WavefrontRenderer::resume(const Accumulation& accumulation, uint64_t pathsDone) {
@@ -252,6 +251,9 @@ RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
+  image.albedo.resize(pixels);
+  image.normal.resize(pixels);
+  image.depth.resize(pixels);
   const uint64_t done = pathsDone_ - firstPath_;
   const uint64_t fullSamples = done / pixels, startedPixels = done % pixels;
   for (size_t i = 0; i < pixels; ++i) {
@@ -263,6 +265,9 @@ RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
     glm::vec3 sampleVariance = n > 1 ? glm::max(meanSquare - mean * mean, glm::vec3(0.0f)) * float(n / (n - 1)) : glm::vec3(0.0f);
     image.mean[i] = mean;
     image.variance[i] = sampleVariance / float(n);
+    image.albedo[i] = gpu::albedoSumOf(acc.albedoDepth[i]) / float(n);
+    image.normal[i] = glm::vec3(acc.normal[i]) / float(n);
+    image.depth[i] = gpu::depthSumOf(acc.albedoDepth[i]) / float(n);
   }
   return image;
 }
