@@ -33,10 +33,12 @@ protected:
   // its first checkpoint and its end. --sky none, which the Cornell box has anyway, leaves the
   // lighting rule nothing to note, so a refusal is the only line.
   std::vector<std::string> renderArgs(const std::string& output, std::vector<std::string> extra = {},
-                                      const std::string& spp = "64") {
+                                      const std::string& spp = "") {
     std::vector<std::string> args = {"render", scene.string(), "-o", (dir / output).string(), "--backend", GetParam(),
-                                     "--width", "48", "--height", "40", "--spp", spp, "--max-paths", "512",
+                                     "--width", "48", "--height", "40", "--spp", spp.empty() ? samplesPerPixel : spp,
+                                     "--max-paths", "512",
                                      "--sky", "none"};
+    args.insert(args.end(), extraFlags.begin(), extraFlags.end());
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
   }
@@ -80,6 +82,8 @@ protected:
   fs::path dir;
   fs::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
   fs::path checkpoint;
+  std::vector<std::string> extraFlags;  // every render of the test gets these
+  std::string samplesPerPixel = "64";   // --spp of every render unless renderArgs is given one
 };
 
 // Radiance, variance and the feature passes (which must be there) the same bit for bit.
@@ -125,6 +129,26 @@ TEST_P(Farm, SigtermWritesACheckpointExitsResumableAndTheResumeIsBitIdentical) {
   EXPECT_NE(stopped.err.find("run the same command with --resume"), std::string::npos) << stopped.err;
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
   expectBitIdentical(resume(), uninterrupted);
+}
+
+// Adaptive sampling keeps its state (each pixel's sample count and whether it stopped) in
+// the accumulation, so a resumed adaptive render is the uninterrupted one bit for bit too.
+// An 8x8 crop makes a pass of 512 paths 8 samples of every pixel, so the render is stopped
+// at 8 samples or later, after the first check (at 4) has stopped some pixels: a resume that
+// forgot them would give those pixels more samples. 1024 spp at most make 128 passes, so
+// the signal finds the render still going.
+TEST_P(Farm, AnAdaptiveRenderResumesBitIdentical) {
+  extraFlags = {"--adaptive", "0.2", "--adaptive-min-samples", "4", "--region", "20,16,28,24"};
+  samplesPerPixel = "1024";
+  RadianceImage uninterrupted = render("reference.exr");
+  ASSERT_FALSE(uninterrupted.sampleCount.empty());
+  EXPECT_NE(std::count(uninterrupted.sampleCount.begin(), uninterrupted.sampleCount.end(), 4.0f), 0)
+      << "no pixel stopped at the first check";
+  RunResult stopped = interruptedRender(SIGTERM, std::chrono::milliseconds(0));
+  EXPECT_EQ(stopped.exitCode, 75) << stopped.err;
+  RadianceImage resumed = resume();
+  expectBitIdentical(resumed, uninterrupted);
+  EXPECT_EQ(resumed.sampleCount, uninterrupted.sampleCount);
 }
 
 TEST_P(Farm, SigintWithoutCheckpointWritesNothing) {

@@ -278,6 +278,12 @@ WP_STRUCT(RenderParams)
   uint regionY;
   uint regionWidth;
   uint regionHeight;
+  // Adaptive sampling (accumulation.h): a pixel stops receiving samples once its estimated
+  // relative error is below adaptiveThreshold (0: off), checked from adaptiveMinSamples on.
+  float adaptiveThreshold;
+  uint adaptiveMinSamples;
+  uint unused0;
+  uint unused1;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
@@ -304,8 +310,10 @@ WP_FN uint rayRngState(PathRay r) { return r.state.x; }
 WP_FN uint rayBounce(PathRay r) { return r.state.y; }
 // PathRay flags.
 #define WP_RAY_FEATURES_TAKEN 1u  // the path's feature passes are recorded (PathFeatures)
+#define WP_RAY_INACTIVE 2u        // a camera ray of a pixel that stopped sampling: not traced
 WP_FN uint rayFlagsOf(PathRay r) { return r.state.z; }
 WP_FN bool rayFeaturesTaken(PathRay r) { return (rayFlagsOf(r) & WP_RAY_FEATURES_TAKEN) != 0u; }
+WP_FN bool rayInactive(PathRay r) { return (rayFlagsOf(r) & WP_RAY_INACTIVE) != 0u; }
 WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
                           uint rngState, uint bounce, uint flags) {
   PathRay r;

@@ -29,7 +29,7 @@ WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
 // point uniform on the lens aperture, at a shutter time uniform in [0, 1), with the path's
 // random stream seeded from (image pixel, sample, seed): a pixel's paths are the same
 // whichever region or batch of samples traces them.
-WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
+WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot, uint flags) {
   uint pixels = params.pixelCount;
   uint linear = pc.firstPixel + slot;
   uint pixel = imagePixel(params, linear % pixels);
@@ -48,7 +48,7 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint width = params.width;
   vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
   CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, make_vec2(lensU, lensV));
-  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u, 0u);
+  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u, flags);
 }
 
 // The closest hit of `ray`, as shade reads it.
@@ -58,8 +58,15 @@ WP_FN HitRecord extendRay(WP_BUFFERS RenderParams params, PathRay ray) {
   return makeHitRecord(h.t, h.instance, h.primitive);
 }
 
-// The vertex `ray` reached (or the sky it left to), from its hit record.
+// The vertex `ray` reached (or the sky it left to), from its hit record; nothing for the
+// camera ray of a pixel that stopped sampling.
 WP_FN ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, HitRecord hit) {
+  if (rayInactive(ray)) {
+    ShadeResult r;
+    r.flags = 0u;
+    r.radiance = make_vec3(0.0f, 0.0f, 0.0f);
+    return r;
+  }
   if (hitIsMiss(hit)) {
     return shadeMiss(WP_BUFFERS_ARG params, ray);
   }
@@ -76,8 +83,20 @@ WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
 // written is a scalar store per lane).
 WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_BUFFER(pathRadiance)[slot], radiance); }
 
-// Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue,
-// and the path's radiance cleared; the first work item also starts the pass's queues.
+// Whether adaptive sampling stopped the pixel of path slot `slot` of the pass `pc` (as of the
+// passes before it: accumulate of this pass decides for its own samples).
+WP_FN bool slotPixelStopped(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
+  if (!(params.adaptiveThreshold > 0.0f)) {
+    return false;
+  }
+  uint pixels = params.pixelCount;
+  uint pixel = (pc.firstPixel + slot) % pixels;
+  return pixelStopped(WP_LOAD(accumulation, accumulationIndex(WP_LAYER_RADIANCE_SQUARES, pixel, pixels)));
+}
+
+// Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue
+// (inactive when its pixel stopped sampling), and the path's radiance cleared; the first
+// work item also starts the pass's queues.
 WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
   uint pathCount = pc.pathCount;
   uint maxPaths = params.maxPaths;
@@ -87,7 +106,8 @@ WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint 
   if (slot >= pathCount) {
     return;
   }
-  WP_BUFFER(rays)[queueEntry(rayQueue(0u, maxPaths), slot)] = cameraPathRay(params, pc, slot);
+  uint flags = slotPixelStopped(WP_BUFFERS_ARG params, pc, slot) ? WP_RAY_INACTIVE : 0u;
+  WP_BUFFER(rays)[queueEntry(rayQueue(0u, maxPaths), slot)] = cameraPathRay(params, pc, slot, flags);
   WP_BUFFER(pathRadiance)[slot] = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
 }
 
@@ -97,7 +117,8 @@ WP_FN void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i)
   if (i >= queueSize(WP_BUFFERS_ARG queue)) {
     return;
   }
-  WP_BUFFER(hits)[i] = extendRay(WP_BUFFERS_ARG params, WP_LOAD(rays, queueEntry(queue, i)));
+  PathRay ray = WP_LOAD(rays, queueEntry(queue, i));
+  WP_BUFFER(hits)[i] = rayInactive(ray) ? makeHitRecord(0.0f, WP_INVALID, 0u) : extendRay(WP_BUFFERS_ARG params, ray);
 }
 
 // Shade, work item `i` (below the size of the bounce's ray queue): the vertex that entry i
@@ -151,8 +172,10 @@ WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
 
 // Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance,
 // its square (which gives the per-pixel variance) and their feature passes to the pixel's
-// running sums (accumulation.h). It walks the pixel's slots in sample order, so there are no
-// races and the sum order is fixed.
+// running sums (accumulation.h), and counts them. It walks the pixel's slots in sample
+// order, so there are no races and the sum order is fixed. With adaptive sampling it stops
+// the pixel when stopsSampling says so, and adds none of the pixel's later samples (those
+// this pass traced anyway are dropped), so a pixel's samples do not depend on the passes.
 WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
   uint pixels = params.pixelCount;
   uint pathCount = pc.pathCount;
@@ -168,14 +191,20 @@ WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uin
   vec4 sumSquares = WP_LOAD(accumulation, squaresAt);
   vec4 albedoDepth = WP_LOAD(accumulation, albedoDepthAt);
   vec4 normal = WP_LOAD(accumulation, normalAt);
-  for (uint slot = t; slot < pathCount; slot += pixels) {
+  float threshold = params.adaptiveThreshold;
+  uint minSamples = params.adaptiveMinSamples;
+  for (uint slot = t; slot < pathCount && !pixelStopped(sumSquares); slot += pixels) {
     // Only the rgb is read: on lavapipe every component is a scalar load per lane.
     vec3 l = accumulableRadiance(WP_XYZ(WP_BUFFER(pathRadiance)[slot]));
     WP_ADD_XYZ(sum, l);
     WP_ADD_XYZ(sumSquares, l * l);
+    sum = withSampleCounted(sum);
     PathFeatures f = WP_BUFFER(pathFeatures)[slot];
     albedoDepth = albedoDepth + f.albedoDepth;
     WP_ADD_XYZ(normal, featureNormal(f));
+    if (stopsSampling(sum, sumSquares, threshold, minSamples)) {
+      sumSquares = withPixelStopped(sumSquares);
+    }
   }
   WP_BUFFER(accumulation)[sumAt] = sum;
   WP_BUFFER(accumulation)[squaresAt] = sumSquares;

@@ -44,7 +44,8 @@ void checkImageShape(const fs::path& path, const RadianceImage& image) {
   size_t pixels = size_t(image.width) * image.height;
   auto fits = [pixels](size_t size) { return size == 0 || size == pixels; };
   if (image.width == 0 || image.height == 0 || image.mean.size() != pixels || !fits(image.variance.size()) ||
-      !fits(image.albedo.size()) || !fits(image.normal.size()) || !fits(image.depth.size()))
+      !fits(image.albedo.size()) || !fits(image.normal.size()) || !fits(image.depth.size()) ||
+      !fits(image.sampleCount.size()))
     failWrite(path, "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) + " but has " +
                         std::to_string(image.mean.size()) + " means and " + std::to_string(image.variance.size()) +
                         " variances, or passes of other sizes (a bug in the caller)");
@@ -118,6 +119,7 @@ std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& 
   addPlanes(planes, "albedo", kColourChannels, image.albedo);
   addPlanes(planes, "normal", kVectorChannels, image.normal);
   if (!image.depth.empty()) planes.push_back({"depth.Z", image.depth});
+  if (!image.sampleCount.empty()) planes.push_back({"samples.X", image.sampleCount});
   // OpenEXR wants channels sorted by name.
   std::sort(planes.begin(), planes.end(), [](const ExrPlane& a, const ExrPlane& b) { return a.name < b.name; });
   const int channelCount = int(planes.size());
@@ -269,7 +271,7 @@ RadianceImage readExr(const fs::path& path) {
   // The channels read: radiance, then the optional variance and feature passes, each read
   // only when all its channels are there.
   const char* names[] = {"R", "G", "B", "variance.R", "variance.G", "variance.B", "albedo.R", "albedo.G",
-                         "albedo.B", "normal.X", "normal.Y", "normal.Z", "depth.Z"};
+                         "albedo.B", "normal.X", "normal.Y", "normal.Z", "depth.Z", "samples.X"};
   constexpr int kChannels = int(sizeof(names) / sizeof(names[0]));
   int index[kChannels];
   for (int c = 0; c < kChannels; ++c) index[c] = findChannel(exr.header, names[c]);
@@ -321,6 +323,7 @@ RadianceImage readExr(const fs::path& path) {
   readVectors(6, result.albedo);
   readVectors(9, result.normal);
   if (hasAll(12, 1)) result.depth.assign(channel(12), channel(12) + pixels);
+  if (hasAll(13, 1)) result.sampleCount.assign(channel(13), channel(13) + pixels);
   return result;
 }
 

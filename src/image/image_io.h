@@ -23,6 +23,9 @@ struct RadianceImage {
   std::vector<glm::vec3> albedo;
   std::vector<glm::vec3> normal;
   std::vector<float> depth;
+  // The samples each pixel holds, when they differ between pixels (adaptive sampling); empty
+  // when every pixel holds those its record says. Written to EXR as samples.X.
+  std::vector<float> sampleCount;
   // What the image holds of which frame (samples, region, scene), when a render made it.
   std::optional<RenderRecord> record;
 };

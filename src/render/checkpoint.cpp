@@ -35,6 +35,8 @@ constexpr FileLayer kFileLayers[] = {
     {"albedo.sum", WP_LAYER_ALBEDO_DEPTH, 0, 3, "f32x3"},
     {"depth.sum", WP_LAYER_ALBEDO_DEPTH, 3, 1, "f32"},
     {"normal.sum", WP_LAYER_NORMAL, 0, 3, "f32x3"},
+    {"samples", WP_LAYER_RADIANCE, 3, 1, "f32"},
+    {"stopped", WP_LAYER_RADIANCE_SQUARES, 3, 1, "f32"},
 };
 constexpr size_t kFileLayerCount = sizeof(kFileLayers) / sizeof(kFileLayers[0]);
 constexpr uint64_t kBytesPerPixel = [] {

@@ -48,6 +48,8 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
                                                                             : WP_LIGHT_SELECTION_POWER;
   p.punctualLightCount = gpuScene.punctualLightCount;
+  p.adaptiveThreshold = settings.adaptiveThreshold;
+  p.adaptiveMinSamples = settings.adaptiveMinSamples;
   return p;
 }
 
@@ -254,11 +256,14 @@ RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   image.albedo.resize(pixels);
   image.normal.resize(pixels);
   image.depth.resize(pixels);
-  const uint64_t done = pathsDone_ - firstPath_;
-  const uint64_t fullSamples = done / pixels, startedPixels = done % pixels;
+  // With adaptive sampling the pixels hold different numbers of samples, which the EXR keeps.
+  if (settings_.adaptiveThreshold > 0.0f) image.sampleCount.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) {
-    // Mid-pass (progressive rendering), the first startedPixels pixels have one more sample.
-    double n = double(std::max<uint64_t>(fullSamples + (i < startedPixels ? 1 : 0), 1));
+    // The samples the pixel holds: its own count (mid-pass in progressive rendering, or
+    // stopped early by adaptive sampling, pixels differ).
+    const float count = gpu::sampleCountOf(acc.sum[i]);
+    if (!image.sampleCount.empty()) image.sampleCount[i] = count;
+    double n = std::max(double(count), 1.0);
     glm::vec3 mean = glm::vec3(acc.sum[i]) / float(n);
     glm::vec3 meanSquare = glm::vec3(acc.sumSquares[i]) / float(n);
     // Unbiased sample variance, divided by n: the variance of the pixel's mean estimate.
