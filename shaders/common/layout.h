@@ -310,10 +310,8 @@ WP_FN uint rayRngState(PathRay r) { return r.state.x; }
 WP_FN uint rayBounce(PathRay r) { return r.state.y; }
 // PathRay flags.
 #define WP_RAY_FEATURES_TAKEN 1u  // the path's feature passes are recorded (PathFeatures)
-#define WP_RAY_INACTIVE 2u        // a camera ray of a pixel that stopped sampling: not traced
 WP_FN uint rayFlagsOf(PathRay r) { return r.state.z; }
 WP_FN bool rayFeaturesTaken(PathRay r) { return (rayFlagsOf(r) & WP_RAY_FEATURES_TAKEN) != 0u; }
-WP_FN bool rayInactive(PathRay r) { return (rayFlagsOf(r) & WP_RAY_INACTIVE) != 0u; }
 WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
                           uint rngState, uint bounce, uint flags) {
   PathRay r;

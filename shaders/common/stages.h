@@ -29,7 +29,7 @@ WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
 // point uniform on the lens aperture, at a shutter time uniform in [0, 1), with the path's
 // random stream seeded from (image pixel, sample, seed): a pixel's paths are the same
 // whichever region or batch of samples traces them.
-WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot, uint flags) {
+WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint pixels = params.pixelCount;
   uint linear = pc.firstPixel + slot;
   uint pixel = imagePixel(params, linear % pixels);
@@ -48,7 +48,7 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot, ui
   uint width = params.width;
   vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
   CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, make_vec2(lensU, lensV));
-  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u, flags);
+  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u, 0u);
 }
 
 // The closest hit of `ray`, as shade reads it.
@@ -58,15 +58,8 @@ WP_FN HitRecord extendRay(WP_BUFFERS RenderParams params, PathRay ray) {
   return makeHitRecord(h.t, h.instance, h.primitive);
 }
 
-// The vertex `ray` reached (or the sky it left to), from its hit record; nothing for the
-// camera ray of a pixel that stopped sampling.
+// The vertex `ray` reached (or the sky it left to), from its hit record.
 WP_FN ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, HitRecord hit) {
-  if (rayInactive(ray)) {
-    ShadeResult r;
-    r.flags = 0u;
-    r.radiance = make_vec3(0.0f, 0.0f, 0.0f);
-    return r;
-  }
   if (hitIsMiss(hit)) {
     return shadeMiss(WP_BUFFERS_ARG params, ray);
   }
@@ -86,29 +79,34 @@ WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_
 // Whether adaptive sampling stopped the pixel of path slot `slot` of the pass `pc` (as of the
 // passes before it: accumulate of this pass decides for its own samples).
 WP_FN bool slotPixelStopped(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
-  if (!(params.adaptiveThreshold > 0.0f)) {
-    return false;
-  }
   uint pixels = params.pixelCount;
   uint pixel = (pc.firstPixel + slot) % pixels;
   return pixelStopped(WP_LOAD(accumulation, accumulationIndex(WP_LAYER_RADIANCE_SQUARES, pixel, pixels)));
 }
 
-// Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue
-// (inactive when its pixel stopped sampling), and the path's radiance cleared; the first
-// work item also starts the pass's queues.
+// Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue,
+// and the path's radiance cleared; the first work item also starts the pass's queues. With
+// adaptive sampling the rays of pixels that stopped are left out and the others appended,
+// so the queue holds only paths to trace (entry order does not matter: a path's results go
+// to its slot).
 WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
   uint pathCount = pc.pathCount;
   uint maxPaths = params.maxPaths;
+  bool adaptive = params.adaptiveThreshold > 0.0f;
   if (slot == 0u) {
-    startPassQueues(WP_BUFFERS_ARG pathCount, maxPaths);
+    startPassQueues(WP_BUFFERS_ARG pathCount, maxPaths, adaptive);
   }
   if (slot >= pathCount) {
     return;
   }
-  uint flags = slotPixelStopped(WP_BUFFERS_ARG params, pc, slot) ? WP_RAY_INACTIVE : 0u;
-  WP_BUFFER(rays)[queueEntry(rayQueue(0u, maxPaths), slot)] = cameraPathRay(params, pc, slot, flags);
   WP_BUFFER(pathRadiance)[slot] = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
+  WorkQueue queue = rayQueue(0u, maxPaths);
+  if (!adaptive) {
+    WP_BUFFER(rays)[queueEntry(queue, slot)] = cameraPathRay(params, pc, slot);
+  } else if (!slotPixelStopped(WP_BUFFERS_ARG params, pc, slot)) {
+    uint entry = reserveQueueEntries(WP_BUFFERS_ARG queue, 1u);
+    WP_BUFFER(rays)[queueEntry(queue, entry)] = cameraPathRay(params, pc, slot);
+  }
 }
 
 // Extend, work item `i`: the closest hit of entry i of the bounce's ray queue, into hits[i].
@@ -117,8 +115,7 @@ WP_FN void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i)
   if (i >= queueSize(WP_BUFFERS_ARG queue)) {
     return;
   }
-  PathRay ray = WP_LOAD(rays, queueEntry(queue, i));
-  WP_BUFFER(hits)[i] = rayInactive(ray) ? makeHitRecord(0.0f, WP_INVALID, 0u) : extendRay(WP_BUFFERS_ARG params, ray);
+  WP_BUFFER(hits)[i] = extendRay(WP_BUFFERS_ARG params, WP_LOAD(rays, queueEntry(queue, i)));
 }
 
 // Shade, work item `i` (below the size of the bounce's ray queue): the vertex that entry i
@@ -176,9 +173,13 @@ WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
 // order, so there are no races and the sum order is fixed. With adaptive sampling it stops
 // the pixel when stopsSampling says so, and adds none of the pixel's later samples (those
 // this pass traced anyway are dropped), so a pixel's samples do not depend on the passes.
+// Its first work item also empties the queues for the next pass.
 WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
   uint pixels = params.pixelCount;
   uint pathCount = pc.pathCount;
+  if (t == 0u) {
+    finishPassQueues(WP_BUFFERS_ARG params.maxPaths);
+  }
   if (t >= min(pathCount, pixels)) {
     return;
   }

@@ -136,6 +136,9 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
   const float zero = 0.0f;
   CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,
                                accumulation_.size(), 0, nullptr, nullptr));
+  const uint32_t empty = 0;  // empty queues (queues.h)
+  CL_CHECK(clEnqueueFillBuffer(context_->queue, counters_.handle(), &empty, sizeof(empty), 0, counters_.size(), 0,
+                               nullptr, nullptr));
   CL_CHECK(clFinish(context_->queue));
   bindPathState();
 }
