@@ -408,6 +408,8 @@ WP_STRUCT(PassConstants)
   uint pathCount;
   uint bounce;  // of the extend, shade, advance or connect it is passed to
 WP_STRUCT_END(PassConstants)
+// PassConstants.bounce of the advance that runs right after generate (sizeFirstBounce).
+#define WP_AFTER_GENERATE 0xffffffffu
 
 WP_END
 

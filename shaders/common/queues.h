@@ -78,6 +78,13 @@ WP_FN void startPassQueues(WP_BUFFERS uint pathCount, uint maxPaths, bool append
   writeDispatchArguments(WP_BUFFERS_ARG WP_COUNTER_CONNECT_DISPATCH, 0u);
 }
 
+// Advance right after generate, when generate appended its camera rays: extend and shade of
+// bounce 0 sized to them rather than to every path of the pass (a work item costs even when
+// it exits at once: on lavapipe a workgroup of shade takes tens of microseconds).
+WP_FN void sizeFirstBounce(WP_BUFFERS uint maxPaths) {
+  writeDispatchArguments(WP_BUFFERS_ARG WP_COUNTER_EXTEND_DISPATCH, queueSize(WP_BUFFERS_ARG rayQueue(0u, maxPaths)));
+}
+
 // Accumulate, after the pass's last bounce: every queue empty for the next pass's generate,
 // which may append to bounce 0's from its first work item on (the backends' configure
 // empties them before the first pass). The totals stay for the host to read.

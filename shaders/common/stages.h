@@ -146,11 +146,16 @@ WP_FN WorkQueue continuationQueue(RenderParams params, PassConstants pc) {
 }
 
 // Advance, one work item: the queue sizes of `pc`'s bounce turned into the next stages'
-// dispatch arguments (advanceQueues), so the pass needs no readback.
+// dispatch arguments (advanceQueues), so the pass needs no readback; or, after generate
+// (WP_AFTER_GENERATE), bounce 0 sized to the camera rays generate appended.
 WP_FN void advanceStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
   // The dispatch is one workgroup; a single work item must do the read-modify-writes.
   if (i == 0u) {
-    advanceQueues(WP_BUFFERS_ARG pc.bounce, params.maxPaths);
+    if (pc.bounce == WP_AFTER_GENERATE) {
+      sizeFirstBounce(WP_BUFFERS_ARG params.maxPaths);
+    } else {
+      advanceQueues(WP_BUFFERS_ARG pc.bounce, params.maxPaths);
+    }
   }
 }
 

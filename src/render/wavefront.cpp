@@ -142,6 +142,11 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
   // Generate fills bounce 0's ray queue and sizes extend and shade to it; each advance sizes
   // connect of its bounce and extend and shade of the next (queues.h).
   backend_.dispatch({Kernel::Generate, constants(0), DispatchSize::fixed(pathCount), DispatchArguments::Written});
+  if (params_.adaptiveThreshold > 0.0f) {
+    // Generate appended only the rays of pixels still sampling: size bounce 0 to them.
+    backend_.dispatch(
+        {Kernel::Advance, constants(WP_AFTER_GENERATE), DispatchSize::fixed(1), DispatchArguments::Written});
+  }
   for (uint32_t bounce = 0; bounce < bounces; ++bounce) {
     backend_.dispatch({Kernel::Extend, constants(bounce), DispatchSize::rayQueue()});
     backend_.dispatch({Kernel::Shade, constants(bounce), DispatchSize::rayQueue()});
@@ -170,11 +175,22 @@ void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats
   stats.samples += count;
 }
 
+uint64_t WavefrontRenderer::pathsPerPass() const {
+  if (!(settings_.adaptiveThreshold > 0.0f)) return params_.maxPaths;
+  // Adaptive sampling decides between passes which pixels the next one traces: a pass of a
+  // few samples per pixel (as many as lie between two checks) lets it leave out pixels soon
+  // after they stop, at the cost of more passes; kSmallestAdaptivePass paths at least keep
+  // a small image's passes from being all overhead.
+  constexpr uint64_t kSmallestAdaptivePass = 1u << 16;
+  const uint64_t betweenChecks = uint64_t(params_.pixelCount) * WP_ADAPTIVE_INTERVAL;
+  return std::min<uint64_t>(params_.maxPaths, std::max(betweenChecks, kSmallestAdaptivePass));
+}
+
 RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats&)>& afterPass) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   while (pathsDone_ < pathsEnd()) {
-    runNextPass(pathsEnd(), params_.maxPaths, stats);
+    runNextPass(pathsEnd(), pathsPerPass(), stats);
     if (tiles_.size() > 1 && pathsDone_ == tileEnd(tile_)) {
       storeTile();
       if (tile_ + 1 < tiles_.size()) configureTile(tile_ + 1);
