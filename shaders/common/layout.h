@@ -346,6 +346,14 @@ WP_FN vec3 shadowRayContribution(ShadowRay s) {
   return make_vec3(s.contribution.x, s.contribution.y, s.contribution.z);
 }
 WP_FN float shadowRayTime(ShadowRay s) { return s.contribution.w; }
+WP_FN ShadowRay makeShadowRay(vec3 origin, uint pathSlot, vec3 direction, float rayLength, vec3 contribution,
+                              float time) {
+  ShadowRay s;
+  s.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
+  s.direction = make_vec4(direction.x, direction.y, direction.z, rayLength);
+  s.contribution = make_vec4(contribution.x, contribution.y, contribution.z, time);
+  return s;
+}
 
 // Queue sizes and indirect dispatch arguments, written on the GPU. Kernels address it as a
 // flat uint array (atomics need a plain uint lvalue) through the word indices below.
