@@ -161,9 +161,9 @@ TEST(View, ImageFollowsAResizedWindow) {
 // view, since the move restarts the accumulation) is no longer the scene camera's render.
 // Unmoved, the two are equal bit for bit (ScriptedRunMatchesRender*), so any differing
 // pixel is the move; a forward move of a few tenths of the box changes most of them. The run
-// lasts 1000 frames: once the image has its samples a frame costs next to nothing, and on a
-// loaded machine the window can take seconds to be found and the key to arrive, which 100
-// and 300 frames were sometimes over before.
+// lasts 1000 frames of at least the 20 ms budget each (a converged scripted frame waits out
+// its budget), so 20 s: on a loaded machine the window can take seconds to be found and the
+// key to arrive (the helper tries for 10 s).
 TEST(View, HeldKeyInTheWindowMovesTheCamera) {
   std::filesystem::path dir = scratchDirectory("view-key");
   std::vector<std::string> flags = sceneFlags("vulkan");
