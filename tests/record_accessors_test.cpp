@@ -30,6 +30,27 @@ TEST(RecordAccessors, Triangle) {
   EXPECT_EQ(triangleEmitter(t), 4u);
 }
 
+TEST(RecordAccessors, TriangleShading) {
+  GpuTriangleShading s = makeGpuTriangleShading(
+      vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1), vec2(0.1f, 0.2f), vec2(0.3f, 0.4f), vec2(0.5f, 0.6f), true,
+      0x11223344u, 0x55667788u, 0x99aabbccu, vec4(0, 1, 0, -1), vec4(0, 0, 1, 1), vec4(1, 0, 0, -1));
+  EXPECT_EQ(vertexNormal0(s), vec3(1, 0, 0));
+  EXPECT_EQ(vertexNormal1(s), vec3(0, 1, 0));
+  EXPECT_EQ(vertexNormal2(s), vec3(0, 0, 1));
+  EXPECT_EQ(vertexUv0(s), vec2(0.1f, 0.2f));
+  EXPECT_EQ(vertexUv1(s), vec2(0.3f, 0.4f));
+  EXPECT_EQ(vertexUv2(s), vec2(0.5f, 0.6f));
+  EXPECT_TRUE(hasUv(s));
+  EXPECT_EQ(vertexColor0(s), 0x11223344u);
+  EXPECT_EQ(vertexColor1(s), 0x55667788u);
+  EXPECT_EQ(vertexColor2(s), 0x99aabbccu);
+  EXPECT_EQ(vertexTangent0(s), vec4(0, 1, 0, -1));
+  EXPECT_EQ(vertexTangent1(s), vec4(0, 0, 1, 1));
+  EXPECT_EQ(vertexTangent2(s), vec4(1, 0, 0, -1));
+  EXPECT_FALSE(hasUv(makeGpuTriangleShading(vec3(0), vec3(0), vec3(0), vec2(0), vec2(0), vec2(0), false, 0u, 0u, 0u,
+                                            vec4(0), vec4(0), vec4(0))));
+}
+
 TEST(RecordAccessors, Texture) {
   GpuTexture t = makeGpuTexture(100u, 16u, 8u, WP_TEXTURE_WRAP_MIRROR, WP_TEXTURE_WRAP_CLAMP, true, false);
   EXPECT_EQ(textureFirstTexel(t), 100u);

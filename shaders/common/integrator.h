@@ -159,7 +159,7 @@ WP_STRUCT_END(ShadowConnection)
 // the surface (a direction whose two verdicts differ contributes nothing, to every
 // strategy alike: sidesAgree). Where wo itself is on different sides of the two, the vertex
 // normals are unusable there and the point shades flat.
-WP_FN PathVertex pathVertexAt(SurfaceHit s, vec3 wo, vec3 throughput, PathRay ray) {
+WP_FN_INLINED PathVertex pathVertexAt(SurfaceHit s, vec3 wo, vec3 throughput, PathRay ray) {
   PathVertex v;
   v.position = s.position;
   v.normal = s.normal;
@@ -178,7 +178,7 @@ WP_FN PathVertex pathVertexAt(SurfaceHit s, vec3 wo, vec3 throughput, PathRay ra
 // The MIS weight of emission that `ray` found at distance t on the emitter of s: next event
 // estimation could have found that light too (a delta BSDF sample, whose ray has pdf 0,
 // could not, nor could a camera ray).
-WP_FN float emissionMisWeight(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit s, vec3 wo, float t) {
+WP_FN_INLINED float emissionMisWeight(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit s, vec3 wo, float t) {
   float weight = 1.0f;
   float bsdfPdfOfRay = rayBsdfPdf(ray);
   if (bsdfPdfOfRay > 0.0f && s.light != WP_INVALID) {
@@ -200,7 +200,7 @@ WP_FN float emissionMisWeight(WP_BUFFERS RenderParams params, PathRay ray, Surfa
 
 // The light the path finds at the hit (material m at s, reached by `ray` at distance t,
 // seen from wo), weighted against next event estimation.
-WP_FN vec3 emissionAtHit(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit s, GpuMaterial m, vec3 wo,
+WP_FN_INLINED vec3 emissionAtHit(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit s, GpuMaterial m, vec3 wo,
                          vec3 throughput, float t) {
   vec3 emission = emittedRadiance(xyz(m.emission), m.emission.w != 0.0f, s.normal, wo);
   if (!(maxComponent(emission) > 0.0f)) {
@@ -212,7 +212,7 @@ WP_FN vec3 emissionAtHit(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit
 
 // Whether shade draws a light sample: in every mode but BSDF-only, where it still reaches
 // the punctual lights, which no BSDF sample can hit, and leaves the rest to BSDF sampling.
-WP_FN bool samplesLights(RenderParams params) {
+WP_FN_INLINED bool samplesLights(RenderParams params) {
   return (params.mode != WP_MODE_BSDF || params.punctualLightCount > 0u) &&
          (params.lightCount > 0u || params.sky.selectionProbability > 0.0f);
 }
@@ -220,7 +220,7 @@ WP_FN bool samplesLights(RenderParams params) {
 // A point on the sky or on the lights for next event estimation from `position`: the sky
 // or the lights chosen in proportion to their power (packScene), u.x reused, rescaled, to
 // select the light; its pdf includes that choice.
-WP_FN LightSample sampleSkyOrLight(WP_BUFFERS RenderParams params, vec3 position, float time, vec3 u) {
+WP_FN_INLINED LightSample sampleSkyOrLight(WP_BUFFERS RenderParams params, vec3 position, float time, vec3 u) {
   float skyChoice = params.sky.selectionProbability;
   LightSample ls;
   if (u.x < skyChoice) {
@@ -238,7 +238,7 @@ WP_FN LightSample sampleSkyOrLight(WP_BUFFERS RenderParams params, vec3 position
 // Next event estimation at v with random numbers u: a light sample, its BSDF value and
 // MIS weight, and the shadow ray that adds it to the path if nothing blocks it (none where
 // it contributes nothing). In BSDF-only mode only the punctual lights are sampled.
-WP_FN ShadowConnection sampleDirectLight(WP_BUFFERS RenderParams params, PathVertex v, GpuMaterial m, vec3 u) {
+WP_FN_INLINED ShadowConnection sampleDirectLight(WP_BUFFERS RenderParams params, PathVertex v, GpuMaterial m, vec3 u) {
   uint mode = params.mode;
   LightSample ls = sampleSkyOrLight(WP_BUFFERS_ARG params, v.position, v.time, u);
   if (mode == WP_MODE_BSDF && !ls.isDelta) {
@@ -271,7 +271,7 @@ WP_STRUCT(RouletteResult)
   uint rng;
   float survival;
 WP_STRUCT_END(RouletteResult)
-WP_FN RouletteResult russianRoulette(RenderParams params, uint bounce, vec3 throughput, uint rng) {
+WP_FN_INLINED RouletteResult russianRoulette(RenderParams params, uint bounce, vec3 throughput, uint rng) {
   RouletteResult r;
   r.rng = rng;
   r.survival = 1.0f;
@@ -291,7 +291,7 @@ WP_FN RouletteResult russianRoulette(RenderParams params, uint bounce, vec3 thro
 // From the last vertex a ray is still traced, only to collect emission the light sample
 // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
 // with NEE alone, what only a delta lobe reaches.
-WP_FN NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, RngDraw3 draw) {
+WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, RngDraw3 draw) {
   NextRay next;
   next.exists = false;
   MaterialSample bs = sampleBsdf(m, v.woLocal, draw.u, params.bsdfFlags);

@@ -131,6 +131,22 @@ WP_FN uint vertexColor2(GpuTriangleShading s) { return s.colors.z; }
 WP_FN vec4 vertexTangent0(GpuTriangleShading s) { return s.tangent0; }
 WP_FN vec4 vertexTangent1(GpuTriangleShading s) { return s.tangent1; }
 WP_FN vec4 vertexTangent2(GpuTriangleShading s) { return s.tangent2; }
+// From the three vertices' values: unit normals (all zero: flat), TEXCOORD_0 (if hasUv),
+// COLOR_0 as RGBA8 and tangents (xyz, w: the bitangent's sign; all zero: none).
+WP_FN GpuTriangleShading makeGpuTriangleShading(vec3 normal0, vec3 normal1, vec3 normal2, vec2 uv0, vec2 uv1,
+                                                vec2 uv2, bool hasUv, uint color0, uint color1, uint color2,
+                                                vec4 tangent0, vec4 tangent1, vec4 tangent2) {
+  GpuTriangleShading s;
+  s.normal0 = make_vec4(normal0.x, normal0.y, normal0.z, uv0.x);
+  s.normal1 = make_vec4(normal1.x, normal1.y, normal1.z, uv1.x);
+  s.normal2 = make_vec4(normal2.x, normal2.y, normal2.z, uv2.x);
+  s.v = make_vec4(uv0.y, uv1.y, uv2.y, hasUv ? 1.0f : 0.0f);
+  s.colors = make_uvec4(color0, color1, color2, 0u);
+  s.tangent0 = tangent0;
+  s.tangent1 = tangent1;
+  s.tangent2 = tangent2;
+  return s;
+}
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
 #define WP_TEXTURE_WRAP_REPEAT 0u

@@ -25,6 +25,7 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_BEGIN namespace wp::gpu {
 #define WP_END }
 #define WP_FN inline
+#define WP_FN_INLINED inline
 #define WP_STRUCT(name) struct name {
 #define WP_STRUCT_END(name) };
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

@@ -11,6 +11,7 @@
 #define WP_BEGIN
 #define WP_END
 #define WP_FN
+#define WP_FN_INLINED  // Mesa inlines every function
 #define WP_STRUCT(name) struct name {
 #define WP_STRUCT_END(name) };
 

@@ -30,12 +30,14 @@ WP_STRUCT_END(Hit)
 
 // The children of a node that the ray reaches before tMax, the nearer one first.
 WP_STRUCT(ChildHits)
-  uint nearIndex;  // index of the first child reached
-  uint farIndex;   // index of the second
-  uint nearCount;  // their leaf counts (0: interior node)
-  uint farCount;
+  uvec4 children;  // read by the accessors below (one vector: PoCL selects it in one go)
   uint count;      // children reached: 0, 1 or 2
 WP_STRUCT_END(ChildHits)
+// The index of the first and second child reached, and their leaf counts (0: interior node).
+WP_FN uint nearChild(ChildHits c) { return c.children.x; }
+WP_FN uint farChild(ChildHits c) { return c.children.y; }
+WP_FN uint nearChildCount(ChildHits c) { return c.children.z; }
+WP_FN uint farChildCount(ChildHits c) { return c.children.w; }
 
 WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
   vec2 l = intersectAabb(nodeLeftMin(node), nodeLeftMax(node), origin, invDir, tMax);
@@ -48,12 +50,9 @@ WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float 
   bool hitRight = r.x <= r.y && rightIndex != WP_INVALID;
   bool rightFirst = hitRight && (!hitLeft || r.x < l.x);
   ChildHits c;
-  uint leftCount = nodeLeftCount(node);
-  uint rightCount = nodeRightCount(node);
-  c.nearIndex = rightFirst ? rightIndex : leftIndex;
-  c.farIndex = rightFirst ? leftIndex : rightIndex;
-  c.nearCount = rightFirst ? rightCount : leftCount;
-  c.farCount = rightFirst ? leftCount : rightCount;
+  c.children = rightFirst
+      ? make_uvec4(rightIndex, leftIndex, nodeRightCount(node), nodeLeftCount(node))
+      : make_uvec4(leftIndex, rightIndex, nodeLeftCount(node), nodeRightCount(node));
   c.count = (hitLeft ? 1u : 0u) + (hitRight ? 1u : 0u);
   return c;
 }
@@ -113,14 +112,14 @@ WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, 
   for (;;) {
     while (node != WP_INVALID) {
       ChildHits b = intersectChildren(WP_LOAD(nodes, node), o, invDir, hit.t);
-      uint nearEntry = packEntry(b.nearIndex, b.nearCount);
+      uint nearEntry = packEntry(nearChild(b), nearChildCount(b));
       if (b.count == 2u) {
-        stack[sp] = packEntry(b.farIndex, b.farCount);
+        stack[sp] = packEntry(farChild(b), farChildCount(b));
         ++sp;
       }
       node = WP_INVALID;
-      if (b.count > 0u && b.nearCount == 0u) {
-        node = b.nearIndex;
+      if (b.count > 0u && nearChildCount(b) == 0u) {
+        node = nearChild(b);
       } else {
         if (b.count > 0u && leaf == WP_INVALID) {
           leaf = nearEntry;
@@ -216,11 +215,11 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
     if (entryCount(entry) == 0u) {
       ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
       if (c.count == 2u) {
-        stack[sp] = packEntry(c.farIndex, c.farCount);
+        stack[sp] = packEntry(farChild(c), farChildCount(c));
         ++sp;
       }
       if (c.count > 0u) {
-        entry = packEntry(c.nearIndex, c.nearCount);
+        entry = packEntry(nearChild(c), nearChildCount(c));
         continue;
       }
     } else {

@@ -124,28 +124,17 @@ double seconds(Clock::time_point start) {
 // Vertex normals, TEXCOORD_0, COLOR_0 and TANGENT of triangle t (zero normals, uvs and
 // tangents, white, where the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
-  gpu::GpuTriangleShading shading{};
   const uint32_t* corner = &mesh.indices[3 * t];
-  glm::vec4* normals[3] = {&shading.normal0, &shading.normal1, &shading.normal2};
-  for (int k = 0; k < 3; ++k) {
-    if (!mesh.normals.empty()) *normals[k] = glm::vec4(mesh.normals[corner[k]], 0.0f);
-    if (!mesh.uvs.empty()) {
-      normals[k]->w = mesh.uvs[corner[k]].x;
-      shading.v[k] = mesh.uvs[corner[k]].y;
-    }
-  }
-  shading.v.w = mesh.uvs.empty() ? 0.0f : 1.0f;
-  for (int k = 0; k < 3; ++k) {
+  auto normal = [&](int k) { return mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[corner[k]]; };
+  auto uv = [&](int k) { return mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[corner[k]]; };
+  auto color = [&](int k) {
     const glm::vec4 c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[corner[k]];
     const glm::uvec4 bytes = glm::uvec4(glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f));
-    shading.colors[k] = bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
-  }
-  if (!mesh.tangents.empty()) {
-    shading.tangent0 = mesh.tangents[corner[0]];
-    shading.tangent1 = mesh.tangents[corner[1]];
-    shading.tangent2 = mesh.tangents[corner[2]];
-  }
-  return shading;
+    return bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
+  };
+  auto tangent = [&](int k) { return mesh.tangents.empty() ? glm::vec4(0.0f) : mesh.tangents[corner[k]]; };
+  return gpu::makeGpuTriangleShading(normal(0), normal(1), normal(2), uv(0), uv(1), uv(2), !mesh.uvs.empty(),
+                                     color(0), color(1), color(2), tangent(0), tangent(1), tangent(2));
 }
 
 bool isInvertible(const glm::mat4& toWorld) {
