@@ -441,6 +441,30 @@ TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
   EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"difuse":"disney"}}})").find(extrasError), std::string::npos);
 }
 
+// glTF alphaMode: OPAQUE (the default) ignores alpha, MASK keeps its cutoff (default 0.5),
+// BLEND; a mode glTF does not name, or a negative cutoff, is one error line.
+TEST_F(SceneTest, ReadsAlphaModesAndCutoffs) {
+  GltfFile file = triangleFile();
+  auto json = [&](const std::string& materials) {
+    return file.json(R"("materials":[)" + materials + R"(],
+      "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+      "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])");
+  };
+  const Scene scene = load(json(R"({"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.3]}},
+      {"alphaMode":"MASK"}, {"alphaMode":"MASK","alphaCutoff":0.25}, {"alphaMode":"BLEND"})"));
+  ASSERT_GE(scene.materials.size(), 4u);
+  EXPECT_EQ(scene.materials[0].alphaMode, wp::Material::AlphaMode::Opaque);
+  EXPECT_FLOAT_EQ(scene.materials[0].alpha, 0.3f);
+  EXPECT_EQ(scene.materials[1].alphaMode, wp::Material::AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(scene.materials[1].alphaCutoff, 0.5f);
+  EXPECT_FLOAT_EQ(scene.materials[2].alphaCutoff, 0.25f);
+  EXPECT_EQ(scene.materials[3].alphaMode, wp::Material::AlphaMode::Blend);
+  EXPECT_NE(errorOfJson(json(R"({"alphaMode":"CLIP"})")).find("material 0: alphaMode 'CLIP' is not OPAQUE, MASK or BLEND"),
+            std::string::npos);
+  EXPECT_NE(errorOfJson(json(R"({"alphaMode":"MASK","alphaCutoff":-1})")).find("alphaCutoff must be a finite number >= 0"),
+            std::string::npos);
+}
+
 // --- vertex normals ---
 
 // A primitive without NORMAL before one with: the mesh gets normals, zero (flat) for the

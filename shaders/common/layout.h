@@ -56,7 +56,8 @@ WP_FN uint nodeRightIndex(BvhNode n) { return asUint(n.rightMin.w); }
 WP_FN uint nodeRightCount(BvhNode n) { return asUint(n.rightMax.w); }
 
 // Triangle in object space, stored in BVH leaf order: 64 bytes.
-//   v0: xyz: vertex 0
+//   v0: xyz: vertex 0; w: 1 if its material's alphaMode is MASK or BLEND (the traversal then
+//     tests its coverage, alpha.h), 0 if opaque
 //   edge1: xyz: v1 - v0
 //   edge2: xyz: v2 - v0
 //   info: x: material index, y: emitter ordinal within its mesh or WP_INVALID
@@ -67,6 +68,8 @@ WP_FN uint nodeRightCount(BvhNode n) { return asUint(n.rightMax.w); }
   F(uvec4, info)
 WP_RECORD(GpuTriangle)
 WP_FN vec3 triangleVertex0(GpuTriangle t) { return make_vec3(t.v0.x, t.v0.y, t.v0.z); }
+// Kept in v0.w, which the traversal loads anyway, so opaque triangles cost no extra fetch.
+WP_FN bool triangleAlphaTested(GpuTriangle t) { return t.v0.w != 0.0f; }
 WP_FN vec3 triangleEdge1(GpuTriangle t) { return make_vec3(t.edge1.x, t.edge1.y, t.edge1.z); }
 WP_FN vec3 triangleEdge2(GpuTriangle t) { return make_vec3(t.edge2.x, t.edge2.y, t.edge2.z); }
 WP_FN uint triangleMaterial(GpuTriangle t) { return t.info.x; }
@@ -180,7 +183,7 @@ WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
 #define WP_MATERIAL_GLTF_DISNEY_DIFFUSE 2u  // the mixture with the seed's Disney diffuse base
                                             // (extras.wavepath.diffuse = "disney")
 
-// A surface material, 112 bytes.
+// A surface material, 128 bytes.
 //   baseColor: rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
 //   emission: rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
 //   surface: x: metallic, y: perceptual roughness, z: ior, w: transmission
@@ -191,6 +194,7 @@ WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
 //   normalMap: x: the normal texture's scale, yzw: unused
 //   emissiveMap: x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none), yzw:
 //     unused
+//   alphaInfo: x: WP_ALPHA_* (glTF alphaMode), y: asUint(alphaCutoff), zw: unused
 #define WP_FIELDS_GpuMaterial(F) \
   F(vec4, baseColor)             \
   F(vec4, emission)              \
@@ -198,8 +202,16 @@ WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
   F(vec4, attenuation)           \
   F(uvec4, info)                 \
   F(vec4, normalMap)             \
-  F(uvec4, emissiveMap)
+  F(uvec4, emissiveMap)          \
+  F(uvec4, alphaInfo)
 WP_RECORD(GpuMaterial)
+
+// GpuMaterial alpha modes (glTF alphaMode): what the base colour's alpha means.
+#define WP_ALPHA_OPAQUE 0u  // nothing: the surface is opaque
+#define WP_ALPHA_MASK 1u    // opaque where alpha >= alphaCutoff, absent elsewhere
+#define WP_ALPHA_BLEND 2u   // a ray passes with probability 1 - alpha (alpha.h)
+WP_FN uint materialAlphaMode(GpuMaterial m) { return m.alphaInfo.x; }
+WP_FN float materialAlphaCutoff(GpuMaterial m) { return asFloat(m.alphaInfo.y); }
 
 // GpuLight.info.y: what the light is, in the low bits, and its flags above them.
 #define WP_LIGHT_TRIANGLE 0u     // an emissive triangle (an area light)

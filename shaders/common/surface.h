@@ -56,6 +56,12 @@ WP_FN vec2 uvAt(GpuTriangleShading shading, vec2 b) {
   return vertexUv0(shading) * (1.0f - b.x - b.y) + vertexUv1(shading) * b.x + vertexUv2(shading) * b.y;
 }
 
+// COLOR_0 (RGBA, white without) at barycentrics b (of vertices 1 and 2) of a triangle.
+WP_FN vec4 colorAt(GpuTriangleShading shading, vec2 b) {
+  return unpackUnorm8(vertexColor0(shading)) * (1.0f - b.x - b.y) + unpackUnorm8(vertexColor1(shading)) * b.x +
+         unpackUnorm8(vertexColor2(shading)) * b.y;
+}
+
 // `instanceField` and `primitive` are hitInstanceField and hitPrimitive of a hit at the
 // normalized shutter time `time` the ray was traced at (moving instances are placed then).
 WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
@@ -91,8 +97,7 @@ WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 p
   vec3 n = vertexNormal0(shading) * (1.0f - b.x - b.y) + vertexNormal1(shading) * b.x + vertexNormal2(shading) * b.y;
   s.hasUv = hasUv(shading);
   s.uv = uvAt(shading, b);
-  s.color = unpackUnorm8(vertexColor0(shading)) * (1.0f - b.x - b.y) + unpackUnorm8(vertexColor1(shading)) * b.x +
-            unpackUnorm8(vertexColor2(shading)) * b.y;
+  s.color = colorAt(shading, b);
   // The file's TANGENT (glTF: bitangent = w cross(normal, tangent), in object space, so a
   // mirroring instance transform mirrors it along with the rest), else the triangle's uv
   // gradient: [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2].

@@ -3,6 +3,7 @@
 #ifndef WP_TRAVERSE_H
 #define WP_TRAVERSE_H
 
+#include "alpha.h"
 #include "binding_table.h"
 #include "instance.h"
 #include "intersect.h"
@@ -77,15 +78,18 @@ WP_FN Hit intersectPlanes(WP_BUFFERS uint planeCount, vec3 origin, vec3 directio
 
 // The triangles of a bottom-level leaf entry of `instance`, with the ray in object space: a
 // loop of fixed length WP_MAX_LEAF_TRIANGLES that the compiler unrolls (the slots past the
-// leaf's count test its first triangle again and are ignored).
-WP_FN Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit hit) {
+// leaf's count test its first triangle again and are ignored). A triangle whose material has
+// an alpha mode must also cover the hit (alpha.h; `seed` decides BLEND); opaque ones skip
+// that test, so they cost what they did before alpha existed.
+WP_FN Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit hit, uint seed) {
   uint first = entryIndex(leaf);
   uint count = entryCount(leaf);
   for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
     uint j = first + (k < count ? k : 0u);
     GpuTriangle tri = WP_LOAD(triangles, j);
     float t = intersectTriangle(o, d, triangleVertex0(tri), triangleEdge1(tri), triangleEdge2(tri), hit.t);
-    if (k < count && t < hit.t) {
+    if (k < count && t < hit.t &&
+        (!triangleAlphaTested(tri) || triangleCovers(WP_BUFFERS_ARG tri, j, instance, o + d * t, seed))) {
       hit.t = t;
       hit.instance = instance;
       hit.primitive = j;
@@ -99,7 +103,7 @@ WP_FN Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit
 // holds a leaf, and the leaf is postponed until every lane of the subgroup holds one, so
 // node visits and leaf tests run in separate SIMD iterations (Aila & Laine 2009,
 // "while-while" with postponed leaves).
-WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, Hit hit, bool anyHit) {
+WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, Hit hit, bool anyHit, uint seed) {
   vec3 invDir = rayInverseDirection(d);
   uint stack[WP_LEVEL_STACK_SIZE];
   uint sp = 0u;
@@ -142,7 +146,7 @@ WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, 
       }
     }
     if (leaf != WP_INVALID) {
-      hit = intersectLeaf(WP_BUFFERS_ARG leaf, instance, o, d, hit);
+      hit = intersectLeaf(WP_BUFFERS_ARG leaf, instance, o, d, hit, seed);
       leaf = WP_INVALID;
       if (anyHit && hit.instance != WP_INVALID) {
         return hit;
@@ -165,8 +169,9 @@ WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, 
 }
 
 // Instance `i`, placed at normalized shutter time `time`: its unit sphere, or its mesh's
-// bottom level, with the ray taken to object space.
-WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, float time, Hit hit, bool anyHit) {
+// bottom level, with the ray taken to object space; `seed` decides alpha BLEND (alpha.h).
+WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, float time, Hit hit, bool anyHit,
+                            uint seed) {
   GpuInstance inst = instanceAt(WP_BUFFERS_ARG i, time);
   vec3 o = pointToObject(inst, origin);
   vec3 d = directionToObject(inst, direction);
@@ -179,7 +184,7 @@ WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, floa
     }
     return hit;
   }
-  return traceBottomLevel(WP_BUFFERS_ARG instanceBvhRoot(inst), i, o, d, hit, anyHit);
+  return traceBottomLevel(WP_BUFFERS_ARG instanceBvhRoot(inst), i, o, d, hit, anyHit, seed);
 }
 
 // Nearest hit at 0 < t < tMax, or with anyHit the first one found, with moving instances
@@ -204,6 +209,7 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
     return hit;
   }
   vec3 invDir = rayInverseDirection(direction);
+  uint seed = coverageSeedOf(origin, direction);
   uint stack[WP_LEVEL_STACK_SIZE];
   uint sp = 0u;
   uint entry = packEntry(tlasRoot, 0u);
@@ -220,7 +226,7 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
       }
     } else {
       // A top-level leaf holds one instance (GpuScene packs one per leaf).
-      hit = intersectInstance(WP_BUFFERS_ARG entryIndex(entry), origin, direction, time, hit, anyHit);
+      hit = intersectInstance(WP_BUFFERS_ARG entryIndex(entry), origin, direction, time, hit, anyHit, seed);
       if (anyHit && hit.instance != WP_INVALID) {
         return hit;
       }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -110,6 +111,15 @@ uint32_t gpuMaterialKind(Material::Bsdf bsdf) {
     case Material::Bsdf::Gltf: break;
   }
   return WP_MATERIAL_GLTF;
+}
+
+uint32_t gpuAlphaMode(Material::AlphaMode mode) {
+  switch (mode) {
+    case Material::AlphaMode::Mask: return WP_ALPHA_MASK;
+    case Material::AlphaMode::Blend: return WP_ALPHA_BLEND;
+    case Material::AlphaMode::Opaque: break;
+  }
+  return WP_ALPHA_OPAQUE;
 }
 
 void packTextures(const Scene& scene, GpuScene& out) {
@@ -404,7 +414,8 @@ void writeTriangles(const Scene& scene, const Mesh& mesh, const Bvh& bvh, MeshPr
                                     textureIndex(material.emissiveTexture));
       emitter.weight = std::max(luminance(mean), kMinimumTextureShare * luminance(material.emission));
     }
-    out.triangles[packed] = {glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
+    const float alphaTested = scene.materials[mesh.materials[t]].isAlphaTested() ? 1.0f : 0.0f;
+    out.triangles[packed] = {glm::vec4(v[0], alphaTested), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
                              glm::uvec4(mesh.materials[t], prims.ordinal[t], 0u, 0u)};
     out.triangleShading[packed] = shading;
   }
@@ -535,7 +546,8 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
                     textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
                     textureIndex(material.normalTexture)),
          glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f),
-         glm::uvec4(textureIndex(material.emissiveTexture), 0u, 0u, 0u)});
+         glm::uvec4(textureIndex(material.emissiveTexture), 0u, 0u, 0u),
+         glm::uvec4(gpuAlphaMode(material.alphaMode), std::bit_cast<uint32_t>(material.alphaCutoff), 0u, 0u)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

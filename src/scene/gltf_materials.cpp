@@ -89,6 +89,22 @@ Material::Bsdf readBsdf(const Context& ctx, const tinygltf::Material& material, 
   return hasDiffuse && text("diffuse") == "disney" ? Material::Bsdf::GltfDisneyDiffuse : Material::Bsdf::Gltf;
 }
 
+// glTF alphaMode and alphaCutoff (which only MASK reads).
+void readAlpha(const Context& ctx, const tinygltf::Material& material, const std::string& where, Material& out) {
+  const std::string& mode = material.alphaMode;
+  if (mode == "MASK") {
+    out.alphaMode = Material::AlphaMode::Mask;
+  } else if (mode == "BLEND") {
+    out.alphaMode = Material::AlphaMode::Blend;
+  } else if (mode != "OPAQUE" && !mode.empty()) {
+    fail(ctx, where, "alphaMode '" + oneLine(mode.substr(0, 40)) + "' is not OPAQUE, MASK or BLEND; fix the material");
+  }
+  if (!(material.alphaCutoff >= 0.0 && std::isfinite(material.alphaCutoff))) {
+    fail(ctx, where, "alphaCutoff must be a finite number >= 0; fix the material");
+  }
+  out.alphaCutoff = static_cast<float>(material.alphaCutoff);
+}
+
 Material convert(const Context& ctx, const tinygltf::Material& material, size_t index) {
   const std::string where = describe("material", index, material.name);
   const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
@@ -106,6 +122,7 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   // glTF limits the factors to [0, 1]; an albedo above 1 would create energy.
   out.baseColor = glm::clamp(glm::vec3(base[0], base[1], base[2]), 0.0f, 1.0f);
   out.alpha = std::clamp(static_cast<float>(base[3]), 0.0f, 1.0f);
+  readAlpha(ctx, material, where, out);
   out.metallic = std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f);
   out.roughness = std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f);
   // KHR_materials_ior allows 0 for "no refraction"; wavepath's glass needs an index >= 1.

@@ -23,11 +23,16 @@ struct Material {
   // (extras.wavepath.diffuse = "disney"); Lambert: ideal diffuse of albedo baseColor
   // (extras.wavepath.bsdf = "lambert").
   enum class Bsdf { Gltf, GltfDisneyDiffuse, Lambert };
+  // glTF alphaMode: Opaque ignores alpha; Mask cuts the surface out where alpha <
+  // alphaCutoff; Blend lets a ray pass with probability 1 - alpha (shaders/common/alpha.h).
+  enum class AlphaMode { Opaque, Mask, Blend };
 
   std::string name;
   Bsdf bsdf = Bsdf::Gltf;
   glm::vec3 baseColor{1.0f};  // linear RGB base colour
-  float alpha = 1.0f;
+  float alpha = 1.0f;  // baseColorFactor's alpha
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
   float metallic = 1.0f;
   float roughness = 1.0f;     // perceptual; alpha = roughness^2
   float ior = 1.5f;           // KHR_materials_ior
@@ -43,6 +48,7 @@ struct Material {
   int emissiveTexture = -1;           // index into Scene::textures (sRGB), multiplies emission
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
+  bool isAlphaTested() const { return alphaMode != AlphaMode::Opaque; }
 };
 
 // A triangle mesh in object space. All glTF primitives of a mesh are merged into one.

@@ -27,6 +27,21 @@ std::filesystem::path writeSparseGrid(const std::filesystem::path& dir, bool spa
 // instead of mipmapping (docs/scenes.md). Writes <dir>/minification.gltf and .bin.
 std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir);
 
+// glTF alphaMode (samples/alpha_samples.cpp). An orthographic camera looks down -z at a
+// black quad of alphaMode MASK (x in [-2, 0], y in [-1, 1]) whose base colour texture is a
+// 4x4 checker of alpha 1 and 0 (sampled NEAREST, texel (0, 0) opaque), and at a black pane
+// of alphaMode BLEND (x in [0, 2]) whose alpha is 0.5 in baseColorFactor times 0.5 in
+// COLOR_0; behind both, an emitter of radiance 1 fills the view. 2:1, so a 64x32 image has a
+// texel per 8x8 pixels. Writes <dir>/alpha-coverage.gltf and .bin.
+std::filesystem::path writeAlphaCoverage(const std::filesystem::path& dir);
+
+// A sun shining along (1, -1, 0) onto a white floor (y = 0) through a black BLEND pane of
+// alpha 0.25 at y = 1 over x < 0, which shades the floor at x in [-1, 1]; an orthographic
+// camera looks straight down at x in [0, 2], z in [-0.5, 0.5] (2:1, past the pane's edge):
+// the shadowed half should receive 0.75 of the lit half's light. Writes
+// <dir>/alpha-shadow.gltf and .bin.
+std::filesystem::path writeAlphaShadow(const std::filesystem::path& dir);
+
 // Writes every sample into `dir`.
 void writeAllSamples(const std::filesystem::path& dir);
 
