@@ -1,6 +1,7 @@
-// Alpha coverage (glTF alphaMode), tested inside the traversal so camera, extension and
-// shadow rays all see it: MASK cuts a surface out where its alpha is below alphaCutoff; BLEND
-// is stochastic transparency, a ray passing a surface with probability 1 - alpha.
+// Alpha coverage (glTF alphaMode), tested on every hit of an alpha-tested triangle
+// (traceCovered in traverse.h), so camera, extension and shadow rays all see it: MASK cuts a
+// surface out where its alpha is below alphaCutoff; BLEND is stochastic transparency, a ray
+// passing a surface with probability 1 - alpha.
 #ifndef WP_ALPHA_H
 #define WP_ALPHA_H
 
@@ -26,8 +27,8 @@ WP_FN uint coverageSeedOf(vec3 origin, vec3 direction) {
 // The uniform number in [0, 1) that decides whether the ray of `seed` passes triangle
 // `primitive` of instance `instance`. Each (ray, triangle, instance) gets its own, so the
 // decisions at the surfaces along a ray are independent (an instanced leaf seen twice
-// included) and do not depend on the order the traversal meets them: the nearest surface
-// that stops the ray is found with the probability stochastic transparency asks for.
+// included): the nearest surface that stops the ray is found with the probability
+// stochastic transparency asks for.
 WP_FN float coverageUniform(uint seed, uint instance, uint primitive) {
   return rngFloat(pcgHash(seed ^ pcgHash(primitive ^ pcgHash(instance ^ 0x2545f491u))));
 }
@@ -38,9 +39,9 @@ WP_FN float coverageUniform(uint seed, uint instance, uint primitive) {
 WP_FN float coverageAlpha(WP_BUFFERS GpuMaterial m, uint primitive, vec2 b) {
   GpuTriangleShading shading = WP_LOAD(triangleShading, primitive);
   float alpha = m.baseColor.w * colorAt(shading, b).w;
-  uint texture = m.info.y;
-  if (texture != WP_INVALID && hasUv(shading)) {
-    alpha *= sampleTexture(WP_BUFFERS_ARG texture, uvAt(shading, b)).w;
+  TexCoords c = texCoordsAt(shading, b);
+  if (textureApplies(WP_BUFFERS_ARG m.info.y, c)) {
+    alpha *= sampleTexture(WP_BUFFERS_ARG m.info.y, c).w;
   }
   return alpha;
 }

@@ -44,8 +44,8 @@
   X(skyRadiance, 13, vec4, 1, VEC4, TEXELS, ALL)                                  \
   X(skyMarginal, 14, float, 0, R32, TEXELS, ALL)                                  \
   X(skyConditional, 15, float, 0, R32, TEXELS, ALL)                               \
-  X(triangleShading, 16, GpuTriangleShading, 8, RECORD, TEXELS, ALL)             \
-  X(textures, 17, GpuTexture, 1, RECORD, TEXELS, ALL)                             \
+  X(triangleShading, 16, GpuTriangleShading, 10, RECORD, TEXELS, ALL)             \
+  X(textures, 17, GpuTexture, 3, RECORD, TEXELS, ALL)                             \
   X(texels, 18, uint, 0, WORDS, TEXELS, ALL)                                      \
   X(rays, 19, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \
   X(hits, 20, HitRecord, 1, RECORD, TEXEL_VIEW, VULKAN)                           \

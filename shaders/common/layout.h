@@ -78,8 +78,8 @@ WP_FN uint triangleMaterial(GpuTriangle t) { return t.info.x; }
 WP_FN uint triangleEmitter(GpuTriangle t) { return t.info.y; }
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
-// light samples, for the emissive texture), so the traversal's triangle records stay 64
-// bytes: 128 bytes.
+// light samples, for the emissive texture, and the alpha test), so the traversal's triangle
+// records stay 64 bytes: 160 bytes.
 //   normal0..2: xyz: object-space unit vertex normals (glTF NORMAL), all three zero: shade
 //     with the geometric normal (flat); w: TEXCOORD_0's u at the three vertices
 //   v: xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
@@ -87,6 +87,8 @@ WP_FN uint triangleEmitter(GpuTriangle t) { return t.info.y; }
 //     without COLOR_0
 //   tangent0..2: xyz: object-space unit glTF TANGENTs, w: bitangent sign (+-1); all zero
 //     without TANGENT (the frame then comes from the uv gradient)
+//   texCoord1Vertices01: TEXCOORD_1 at vertices 0 (xy) and 1 (zw)
+//   texCoord1Vertex2: xy: TEXCOORD_1 at vertex 2, z: 1 if the mesh has TEXCOORD_1, w: unused
 #define WP_FIELDS_GpuTriangleShading(F) \
   F(vec4, normal0)                      \
   F(vec4, normal1)                      \
@@ -95,7 +97,9 @@ WP_FN uint triangleEmitter(GpuTriangle t) { return t.info.y; }
   F(uvec4, colors)                      \
   F(vec4, tangent0)                     \
   F(vec4, tangent1)                     \
-  F(vec4, tangent2)
+  F(vec4, tangent2)                     \
+  F(vec4, texCoord1Vertices01)          \
+  F(vec4, texCoord1Vertex2)
 WP_RECORD(GpuTriangleShading)
 WP_FN vec3 vertexNormal0(GpuTriangleShading s) { return make_vec3(s.normal0.x, s.normal0.y, s.normal0.z); }
 WP_FN vec3 vertexNormal1(GpuTriangleShading s) { return make_vec3(s.normal1.x, s.normal1.y, s.normal1.z); }
@@ -104,6 +108,10 @@ WP_FN vec2 vertexUv0(GpuTriangleShading s) { return make_vec2(s.normal0.w, s.v.x
 WP_FN vec2 vertexUv1(GpuTriangleShading s) { return make_vec2(s.normal1.w, s.v.y); }
 WP_FN vec2 vertexUv2(GpuTriangleShading s) { return make_vec2(s.normal2.w, s.v.z); }
 WP_FN bool hasUv(GpuTriangleShading s) { return s.v.w != 0.0f; }
+WP_FN vec2 vertexTexCoord1At0(GpuTriangleShading s) { return make_vec2(s.texCoord1Vertices01.x, s.texCoord1Vertices01.y); }
+WP_FN vec2 vertexTexCoord1At1(GpuTriangleShading s) { return make_vec2(s.texCoord1Vertices01.z, s.texCoord1Vertices01.w); }
+WP_FN vec2 vertexTexCoord1At2(GpuTriangleShading s) { return make_vec2(s.texCoord1Vertex2.x, s.texCoord1Vertex2.y); }
+WP_FN bool hasTexCoord1(GpuTriangleShading s) { return s.texCoord1Vertex2.z != 0.0f; }
 // COLOR_0 as RGBA8 (r in the low byte).
 WP_FN uint vertexColor0(GpuTriangleShading s) { return s.colors.x; }
 WP_FN uint vertexColor1(GpuTriangleShading s) { return s.colors.y; }
@@ -119,11 +127,17 @@ WP_FN vec4 vertexTangent2(GpuTriangleShading s) { return s.tangent2; }
 #define WP_TEXTURE_WRAP_MIRROR 2u
 #define WP_TEXTURE_SRGB 16u     // texels are sRGB-encoded colour (decoded before filtering)
 #define WP_TEXTURE_NEAREST 32u  // nearest texel instead of bilinear
+#define WP_TEXTURE_TEXCOORD1 64u  // looked up with TEXCOORD_1 instead of TEXCOORD_0
 
-// A texture's header: 16 bytes.
+// A texture as one material slot uses it (glTF textureInfo): the image and sampler, and the
+// slot's texCoord set and KHR_texture_transform; 48 bytes.
 //   info: x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
+//   uvTransformU, uvTransformV: xyz: the rows of the 2x3 matrix that takes (u, v, 1) to the
+//     coordinates looked up (KHR_texture_transform's offset, rotation and scale); w: unused
 #define WP_FIELDS_GpuTexture(F) \
-  F(uvec4, info)
+  F(uvec4, info)                \
+  F(vec4, uvTransformU)         \
+  F(vec4, uvTransformV)
 WP_RECORD(GpuTexture)
 WP_FN uint textureFirstTexel(GpuTexture t) { return t.info.x; }
 WP_FN uint textureWidth(GpuTexture t) { return t.info.y; }
@@ -132,6 +146,9 @@ WP_FN uint textureWrapS(GpuTexture t) { return t.info.w & 3u; }
 WP_FN uint textureWrapT(GpuTexture t) { return (t.info.w >> 2u) & 3u; }
 WP_FN bool textureIsSrgb(GpuTexture t) { return (t.info.w & WP_TEXTURE_SRGB) != 0u; }
 WP_FN bool textureIsNearest(GpuTexture t) { return (t.info.w & WP_TEXTURE_NEAREST) != 0u; }
+WP_FN bool textureUsesTexCoord1(GpuTexture t) { return (t.info.w & WP_TEXTURE_TEXCOORD1) != 0u; }
+WP_FN vec3 textureUvTransformU(GpuTexture t) { return make_vec3(t.uvTransformU.x, t.uvTransformU.y, t.uvTransformU.z); }
+WP_FN vec3 textureUvTransformV(GpuTexture t) { return make_vec3(t.uvTransformV.x, t.uvTransformV.y, t.uvTransformV.z); }
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
 //   worldToObject0..2: rows of the 3x4 world-to-object matrix (at shutter open if it moves)

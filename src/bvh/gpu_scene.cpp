@@ -125,8 +125,11 @@ uint32_t gpuAlphaMode(Material::AlphaMode mode) {
 void packTextures(const Scene& scene, GpuScene& out) {
   for (const Texture& texture : scene.textures) {
     const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
-    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u);
-    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags)});
+    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u) |
+                           (texture.texCoord == 1 ? WP_TEXTURE_TEXCOORD1 : 0u);
+    const glm::mat3& m = texture.uvTransform;  // column-major: m[column][row]
+    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags),
+                            glm::vec4(m[0][0], m[1][0], m[2][0], 0.0f), glm::vec4(m[0][1], m[1][1], m[2][1], 0.0f)});
     out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
   }
   // The Vulkan texel view reads four texels per RGBA32UI element.
@@ -142,8 +145,8 @@ double seconds(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Vertex normals, TEXCOORD_0, COLOR_0 and TANGENT of triangle t (zero normals, uvs and
-// tangents, white, where the mesh has none).
+// Vertex normals, TEXCOORD_0 and _1, COLOR_0 and TANGENT of triangle t (zero normals, uvs
+// and tangents, white, where the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
   gpu::GpuTriangleShading shading{};
   const uint32_t* corner = &mesh.indices[3 * t];
@@ -156,6 +159,11 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
     }
   }
   shading.v.w = mesh.uvs.empty() ? 0.0f : 1.0f;
+  if (!mesh.uvs1.empty()) {
+    const glm::vec2 a = mesh.uvs1[corner[0]], b = mesh.uvs1[corner[1]], c = mesh.uvs1[corner[2]];
+    shading.texCoord1Vertices01 = glm::vec4(a, b);
+    shading.texCoord1Vertex2 = glm::vec4(c, 1.0f, 0.0f);
+  }
   for (int k = 0; k < 3; ++k) {
     const glm::vec4 c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[corner[k]];
     const glm::uvec4 bytes = glm::uvec4(glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f));

@@ -10,8 +10,8 @@ namespace wp::gpu {
 
 static_assert(sizeof(BvhNode) == 64);
 static_assert(sizeof(GpuTriangle) == 64);
-static_assert(sizeof(GpuTriangleShading) == 128);
-static_assert(sizeof(GpuTexture) == 16);
+static_assert(sizeof(GpuTriangleShading) == 160);
+static_assert(sizeof(GpuTexture) == 48);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(sizeof(GpuPlane) == 32);
 static_assert(sizeof(GpuMaterial) == 128);

@@ -60,6 +60,7 @@ struct Mesh {
   std::vector<glm::vec3> normals;
   // glTF TEXCOORD_0 per vertex, or empty when no primitive has it; zero where one lacks it.
   std::vector<glm::vec2> uvs;
+  std::vector<glm::vec2> uvs1;  // TEXCOORD_1, the same way
   // glTF COLOR_0 per vertex (linear RGBA), or empty when no primitive has it; white where one lacks it.
   std::vector<glm::vec4> colors;
   // glTF TANGENT per vertex (xyz unit, w the bitangent sign, +-1), or empty when no primitive
@@ -74,7 +75,8 @@ struct Mesh {
   size_t triangleCount() const { return indices.size() / 3; }
 };
 
-// A decoded image with its sampler: RGBA8, rows from the top, r in the low byte.
+// A decoded image with its sampler, as one material slot uses it: RGBA8, rows from the top, r
+// in the low byte, with the slot's texture coordinate set and transform.
 struct Texture {
   enum class Wrap { Repeat, Clamp, Mirror };
 
@@ -85,6 +87,9 @@ struct Texture {
   Wrap wrapT = Wrap::Repeat;
   bool nearest = false;  // magFilter NEAREST; otherwise bilinear (there are no mipmaps)
   bool srgb = false;     // colour data (base colour), decoded to linear when sampled
+  int texCoord = 0;      // TEXCOORD_<texCoord> (0 or 1)
+  // KHR_texture_transform: the coordinates looked up are uvTransform * (u, v, 1).
+  glm::mat3 uvTransform{1.0f};
 };
 
 struct MeshInstance {

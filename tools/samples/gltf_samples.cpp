@@ -357,6 +357,7 @@ void writeAllSamples(const std::filesystem::path& dir) {
   writeMinificationPlane(dir);
   writeAlphaCoverage(dir);
   writeAlphaShadow(dir);
+  writeTextureTransform(dir);
   for (Compression c : {Compression::None, Compression::Draco, Compression::Meshopt}) writeCompressedSphere(dir, c);
   writeSparseGrid(dir, true);
   writeSparseGrid(dir, false);

@@ -4,6 +4,8 @@
 
 #include <filesystem>
 
+#include <glm/glm.hpp>
+
 namespace wp::samples {
 
 enum class Compression { None, Draco, Meshopt };
@@ -27,7 +29,7 @@ std::filesystem::path writeSparseGrid(const std::filesystem::path& dir, bool spa
 // instead of mipmapping (docs/scenes.md). Writes <dir>/minification.gltf and .bin.
 std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir);
 
-// glTF alphaMode (samples/alpha_samples.cpp). An orthographic camera looks down -z at a
+// glTF alphaMode (samples/surface_samples.cpp). An orthographic camera looks down -z at a
 // black quad of alphaMode MASK (x in [-2, 0], y in [-1, 1]) whose base colour texture is a
 // 4x4 checker of alpha 1 and 0 (sampled NEAREST, texel (0, 0) opaque), and at a black pane
 // of alphaMode BLEND (x in [0, 2]) whose alpha is 0.5 in baseColorFactor times 0.5 in
@@ -41,6 +43,23 @@ std::filesystem::path writeAlphaCoverage(const std::filesystem::path& dir);
 // the shadowed half should receive 0.75 of the lit half's light. Writes
 // <dir>/alpha-shadow.gltf and .bin.
 std::filesystem::path writeAlphaShadow(const std::filesystem::path& dir);
+
+// KHR_texture_transform and texCoord, like Khronos' TextureTransformTest. The camera of
+// writeAlphaCoverage looks at two quads that emit a 4x4 texture (transformTestTexel, sRGB,
+// NEAREST, REPEAT) with radiance equal to its texels: on the left (x in [-2, 0]) on
+// TEXCOORD_0 = ((x + 2) / 2, (1 - y) / 2) through offset kTransformOffset, rotation
+// kTransformRotation and scale kTransformScale; on the right (x in [0, 2]) with texCoord 1,
+// TEXCOORD_1 = (x / 2, (1 - y) / 2) (TEXCOORD_0 is 0.1 everywhere) through offset
+// kSecondSetOffset. Writes <dir>/texture-transform.gltf and .bin.
+std::filesystem::path writeTextureTransform(const std::filesystem::path& dir);
+inline constexpr glm::vec2 kTransformOffset{0.25f, 0.5f};
+inline constexpr float kTransformRotation = 0.3f;
+inline constexpr glm::vec2 kTransformScale{1.5f, 2.0f};
+inline constexpr glm::vec2 kSecondSetOffset{0.5f, 0.25f};
+// Texel (x, y) of its texture, sRGB-encoded, a different colour each.
+inline glm::u8vec3 transformTestTexel(int x, int y) {
+  return glm::u8vec3(30 + 60 * x, 30 + 60 * y, 200 - 40 * x);
+}
 
 // Writes every sample into `dir`.
 void writeAllSamples(const std::filesystem::path& dir);

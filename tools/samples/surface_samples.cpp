@@ -1,5 +1,6 @@
-// Sample glTF files for alphaMode MASK and BLEND: cut-outs and see-through panes, seen by the
-// camera and by shadow rays.
+// Sample glTF files for what a surface's texture lookups and alpha do: alphaMode MASK and
+// BLEND (cut-outs and see-through panes, seen by the camera and by shadow rays), and
+// texture coordinate sets with KHR_texture_transform.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,12 +19,14 @@ using nlohmann::json;
 constexpr int kNearest = 9728;
 
 // A quad with corners a, b, c, d (counter-clockwise seen from its front) and uvs (0, 0),
-// (0, 1), (1, 1), (1, 0) at them, as a node of its own mesh; `colors` adds COLOR_0 (RGBA
-// FLOAT, the same at every corner). Returns the node.
+// (0, 1), (1, 1), (1, 0) at them (TEXCOORD_0, or with `uvSet1` TEXCOORD_1 while TEXCOORD_0
+// is (0.1, 0.1) everywhere), as a node of its own mesh; `colors` adds COLOR_0 (RGBA FLOAT,
+// the same at every corner). Returns the node.
 int addQuad(GltfBuilder& file, const std::string& name, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d,
-            int material, const glm::vec4* color = nullptr) {
+            int material, const glm::vec4* color = nullptr, bool uvSet1 = false) {
   json attributes = {{"POSITION", file.addFloats({a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z}, "VEC3", 3)},
-                     {"TEXCOORD_0", file.addFloats({0, 0, 0, 1, 1, 1, 1, 0}, "VEC2", 2)}};
+                     {uvSet1 ? "TEXCOORD_1" : "TEXCOORD_0", file.addFloats({0, 0, 0, 1, 1, 1, 1, 0}, "VEC2", 2)}};
+  if (uvSet1) attributes["TEXCOORD_0"] = file.addFloats(std::vector<float>(8, 0.1f), "VEC2", 2);
   if (color != nullptr) {
     std::vector<float> colors;
     for (int k = 0; k < 4; ++k) colors.insert(colors.end(), {color->r, color->g, color->b, color->a});
@@ -106,6 +109,47 @@ std::filesystem::path writeAlphaShadow(const std::filesystem::path& dir) {
   file.json["scene"] = 0;
   file.json["scenes"] = {{{"nodes", nodes}}};
   return file.write(dir, "alpha-shadow");
+}
+
+std::filesystem::path writeTextureTransform(const std::filesystem::path& dir) {
+  GltfBuilder file;
+  std::vector<uint8_t> rgb;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      const glm::u8vec3 t = transformTestTexel(x, y);
+      rgb.insert(rgb.end(), {t.r, t.g, t.b});
+    }
+  }
+  file.json["images"] = {{{"bufferView", file.addView(encodePng(4, 4, 3, rgb))}, {"mimeType", "image/png"}}};
+  file.json["samplers"] = {{{"magFilter", kNearest}, {"minFilter", kNearest}}};
+  file.json["textures"] = {{{"source", 0}, {"sampler", 0}}};
+  const auto emitter = [](const std::string& name, const json& textureInfo) {
+    return json{{"name", name},
+                {"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 1}}}},
+                {"emissiveFactor", {1, 1, 1}},
+                {"emissiveTexture", textureInfo}};
+  };
+  const json transformed = {{"index", 0},
+                            {"extensions",
+                             {{"KHR_texture_transform",
+                               {{"offset", {kTransformOffset.x, kTransformOffset.y}},
+                                {"rotation", kTransformRotation},
+                                {"scale", {kTransformScale.x, kTransformScale.y}}}}}}};
+  const json secondSet = {{"index", 0},
+                          {"texCoord", 1},
+                          {"extensions",
+                           {{"KHR_texture_transform", {{"offset", {kSecondSetOffset.x, kSecondSetOffset.y}}}}}}};
+  file.json["materials"] = {emitter("transformed", transformed), emitter("second set", secondSet)};
+  file.useExtension("KHR_texture_transform", true);
+  const std::vector<int> nodes = {
+      addQuad(file, "transformed", {-2, 1, 0}, {-2, -1, 0}, {0, -1, 0}, {0, 1, 0}, 0),
+      addQuad(file, "second set", {0, 1, 0}, {0, -1, 0}, {2, -1, 0}, {2, 1, 0}, 1, nullptr, true),
+      addTopCamera(file, {0, 0, 5}, {0, 0, 0, 1})};
+  file.json["cameras"][0]["orthographic"]["xmag"] = 2.0;
+  file.json["cameras"][0]["orthographic"]["ymag"] = 1.0;
+  file.json["scene"] = 0;
+  file.json["scenes"] = {{{"nodes", nodes}}};
+  return file.write(dir, "texture-transform");
 }
 
 }  // namespace wp::samples
