@@ -28,6 +28,8 @@ TEST(RecordAccessors, Triangle) {
   EXPECT_EQ(triangleEdge2(t), vec3(-1, -1, 2));
   EXPECT_EQ(triangleMaterial(t), 9u);
   EXPECT_EQ(triangleEmitter(t), 4u);
+  EXPECT_FALSE(triangleAlphaTested(t));
+  EXPECT_TRUE(triangleAlphaTested(withTriangleAlphaTested(t, true)));
 }
 
 TEST(RecordAccessors, TriangleShading) {
@@ -47,6 +49,13 @@ TEST(RecordAccessors, TriangleShading) {
   EXPECT_EQ(vertexTangent0(s), vec4(0, 1, 0, -1));
   EXPECT_EQ(vertexTangent1(s), vec4(0, 0, 1, 1));
   EXPECT_EQ(vertexTangent2(s), vec4(1, 0, 0, -1));
+  EXPECT_FALSE(hasTexCoord1(s));
+  GpuTriangleShading withSet1 = withTexCoord1(s, vec2(0.7f, 0.8f), vec2(0.9f, 1.0f), vec2(1.1f, 1.2f));
+  EXPECT_TRUE(hasTexCoord1(withSet1));
+  EXPECT_EQ(vertexTexCoord1At0(withSet1), vec2(0.7f, 0.8f));
+  EXPECT_EQ(vertexTexCoord1At1(withSet1), vec2(0.9f, 1.0f));
+  EXPECT_EQ(vertexTexCoord1At2(withSet1), vec2(1.1f, 1.2f));
+  EXPECT_EQ(vertexUv2(withSet1), vec2(0.5f, 0.6f));
   EXPECT_FALSE(hasUv(makeGpuTriangleShading(vec3(0), vec3(0), vec3(0), vec2(0), vec2(0), vec2(0), false, 0u, 0u, 0u,
                                             vec4(0), vec4(0), vec4(0))));
 }
@@ -61,6 +70,15 @@ TEST(RecordAccessors, Texture) {
   EXPECT_TRUE(textureIsSrgb(t));
   EXPECT_FALSE(textureIsNearest(t));
   EXPECT_TRUE(textureIsNearest(makeGpuTexture(0u, 1u, 1u, 0u, 0u, false, true)));
+  EXPECT_FALSE(textureUsesTexCoord1(t));
+  EXPECT_EQ(textureUvTransformU(t), vec3(1, 0, 0));
+  EXPECT_EQ(textureUvTransformV(t), vec3(0, 1, 0));
+  GpuTexture slot = withTexCoords(t, true, vec3(2, 0, 0.5f), vec3(0, 3, 0.25f));
+  EXPECT_TRUE(textureUsesTexCoord1(slot));
+  EXPECT_TRUE(textureIsSrgb(slot));
+  EXPECT_EQ(textureWrapS(slot), WP_TEXTURE_WRAP_MIRROR);
+  EXPECT_EQ(textureUvTransformU(slot), vec3(2, 0, 0.5f));
+  EXPECT_EQ(textureUvTransformV(slot), vec3(0, 3, 0.25f));
 }
 
 TEST(RecordAccessors, InstanceAndMotionKeys) {

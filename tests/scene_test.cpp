@@ -441,6 +441,30 @@ TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
   EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"difuse":"disney"}}})").find(extrasError), std::string::npos);
 }
 
+// glTF alphaMode: OPAQUE (the default) ignores alpha, MASK keeps its cutoff (default 0.5),
+// BLEND; a mode glTF does not name, or a negative cutoff, is one error line.
+TEST_F(SceneTest, ReadsAlphaModesAndCutoffs) {
+  GltfFile file = triangleFile();
+  auto json = [&](const std::string& materials) {
+    return file.json(R"("materials":[)" + materials + R"(],
+      "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
+      "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])");
+  };
+  const Scene scene = load(json(R"({"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.3]}},
+      {"alphaMode":"MASK"}, {"alphaMode":"MASK","alphaCutoff":0.25}, {"alphaMode":"BLEND"})"));
+  ASSERT_GE(scene.materials.size(), 4u);
+  EXPECT_EQ(scene.materials[0].alphaMode, wp::Material::AlphaMode::Opaque);
+  EXPECT_FLOAT_EQ(scene.materials[0].alpha, 0.3f);
+  EXPECT_EQ(scene.materials[1].alphaMode, wp::Material::AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(scene.materials[1].alphaCutoff, 0.5f);
+  EXPECT_FLOAT_EQ(scene.materials[2].alphaCutoff, 0.25f);
+  EXPECT_EQ(scene.materials[3].alphaMode, wp::Material::AlphaMode::Blend);
+  EXPECT_NE(errorOfJson(json(R"({"alphaMode":"CLIP"})")).find("material 0: alphaMode 'CLIP' is not OPAQUE, MASK or BLEND"),
+            std::string::npos);
+  EXPECT_NE(errorOfJson(json(R"({"alphaMode":"MASK","alphaCutoff":-1})")).find("alphaCutoff must be a finite number >= 0"),
+            std::string::npos);
+}
+
 // --- vertex normals ---
 
 // A primitive without NORMAL before one with: the mesh gets normals, zero (flat) for the
@@ -578,6 +602,44 @@ TEST_F(SceneTest, ReadsEmissiveTexturesAndWarnsAboutOcclusion) {
   EXPECT_EQ(printed.find("ignores"), std::string::npos) << printed;
   load(file.json(rest + R"("materials":[{"occlusionTexture":{"index":0}}])"), &printed);
   EXPECT_NE(printed.find("occlusion textures"), std::string::npos) << printed;
+}
+
+// texCoord and KHR_texture_transform: each slot gets its set (the transform's texCoord
+// wins) and the matrix T(offset) R(rotation) S(scale); TEXCOORD_1 is read per vertex; a set
+// past 1 is left out with a warning, a malformed transform is an error.
+TEST_F(SceneTest, ReadsTexCoordSetsAndTextureTransforms) {
+  GltfFile file = triangleFile();
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}})), 0, kFloat, 3, "VEC2");
+  file.accessor(file.view(bytesOf(std::vector<glm::vec2>{{5, 6}, {7, 8}, {9, 10}})), 0, kFloat, 3, "VEC2");
+  const std::string rest = R"(
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1,"TEXCOORD_1":2},"material":0}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],
+    "textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,)" + base64(twoTexelPng()) + R"("}],)";
+  const Scene scene = load(file.json(rest + R"("materials":[{
+      "pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1},
+        "metallicRoughnessTexture":{"index":0,"extensions":{"KHR_texture_transform":
+          {"offset":[0.25,0.5],"rotation":1.5707963,"scale":[2,3],"texCoord":1}}}},
+      "emissiveTexture":{"index":0}}])"));
+  ASSERT_EQ(scene.meshes[0].uvs1.size(), 3u);
+  EXPECT_EQ(scene.meshes[0].uvs1[2], glm::vec2(9, 10));
+  const wp::Texture& base = scene.textures.at(size_t(scene.materials[0].baseColorTexture));
+  const wp::Texture& transformed = scene.textures.at(size_t(scene.materials[0].metallicRoughnessTexture));
+  const wp::Texture& emissive = scene.textures.at(size_t(scene.materials[0].emissiveTexture));
+  EXPECT_EQ(base.texCoord, 1);
+  EXPECT_EQ(base.uvTransform, glm::mat3(1.0f));
+  EXPECT_EQ(emissive.texCoord, 0);
+  EXPECT_EQ(transformed.texCoord, 1);
+  // A quarter turn: (u, v) = (1, 0) scales to (2, 0), turns to (0, 2), moves to (0.25, 2.5).
+  const glm::vec3 moved = transformed.uvTransform * glm::vec3(1, 0, 1);
+  EXPECT_NEAR(moved.x, 0.25f, 1e-6f);
+  EXPECT_NEAR(moved.y, 2.5f, 1e-6f);
+  std::string printed;
+  load(file.json(rest + R"("materials":[{"emissiveTexture":{"index":0,"texCoord":2}}])"), &printed);
+  EXPECT_NE(printed.find("TEXCOORD_2 or later"), std::string::npos) << printed;
+  EXPECT_NE(errorOfJson(file.json(rest + R"("materials":[{"emissiveTexture":{"index":0,
+      "extensions":{"KHR_texture_transform":{"scale":[1]}}}}])"))
+                .find("KHR_texture_transform.scale must be 2 finite numbers"),
+            std::string::npos);
 }
 
 TEST_F(SceneTest, RejectsMissingAndUndecodableImages) {
@@ -1015,10 +1077,10 @@ TEST_F(SceneTest, WarnsOnceAboutUnsupportedUsedExtensions) {
   GltfFile file = triangleFile();
   std::string printed;
   load(file.json(R"(
-    "extensionsUsed":["KHR_texture_transform","KHR_materials_emissive_strength","KHR_materials_clearcoat"],)" +
+    "extensionsUsed":["EXT_lights_image_based","KHR_materials_emissive_strength","KHR_materials_clearcoat"],)" +
                  kOneTriangle),
        &printed);
-  EXPECT_NE(printed.find("extensions KHR_texture_transform, KHR_materials_clearcoat ignored, the image may differ "
+  EXPECT_NE(printed.find("extensions EXT_lights_image_based, KHR_materials_clearcoat ignored, the image may differ "
                          "from other viewers"),
             std::string::npos)
       << printed;

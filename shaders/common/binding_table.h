@@ -33,7 +33,7 @@
   X(triangles, 2, GpuTriangle, 4, RECORD, TEXELS, ALL)                            \
   X(instances, 3, GpuInstance, 4, RECORD, TEXELS, ALL)                            \
   X(planes, 4, GpuPlane, 2, RECORD, TEXELS, ALL)                                  \
-  X(materials, 5, GpuMaterial, 7, RECORD, TEXELS, ALL)                            \
+  X(materials, 5, GpuMaterial, 8, RECORD, TEXELS, ALL)                            \
   X(lights, 6, GpuLight, 6, RECORD, TEXELS, ALL)                                  \
   X(rays, 7, PathRay, 4, NONE, WRITE, ALL)                                        \
   X(hits, 8, HitRecord, 1, NONE, WRITE, ALL)                                      \
@@ -44,8 +44,8 @@
   X(skyRadiance, 13, vec4, 1, VEC4, TEXELS, ALL)                                  \
   X(skyMarginal, 14, float, 0, R32, TEXELS, ALL)                                  \
   X(skyConditional, 15, float, 0, R32, TEXELS, ALL)                               \
-  X(triangleShading, 16, GpuTriangleShading, 8, RECORD, TEXELS, ALL)             \
-  X(textures, 17, GpuTexture, 1, RECORD, TEXELS, ALL)                             \
+  X(triangleShading, 16, GpuTriangleShading, 10, RECORD, TEXELS, ALL)             \
+  X(textures, 17, GpuTexture, 3, RECORD, TEXELS, ALL)                             \
   X(texels, 18, uint, 0, WORDS, TEXELS, ALL)                                      \
   X(pathFeatures, 19, PathFeatures, 2, NONE, STORAGE, ALL)                         \
   X(rays, 20, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \

@@ -80,20 +80,19 @@ WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
 
 // The material at the hit with its vertex colour and textures applied (glTF: base colour
 // times COLOR_0 times the texture; metallic and roughness times the texture's blue and
-// green; emission times the emissive texture). Surfaces without TEXCOORD_0 (and spheres and
-// planes) use the constant factors.
+// green; emission times the emissive texture), each texture on its own coordinate set and
+// transform. Where the surface lacks a texture's set (spheres and planes have none) its
+// factor stands alone.
 WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
-  if (!s.hasUv) {
-    return m;
-  }
-  vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
+  TexCoords c = s.texCoords;
+  vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, c);
   m.emission = make_vec4(emission.x, emission.y, emission.z, m.emission.w);
-  if (m.info.y != WP_INVALID) {
-    m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG m.info.y, s.uv);
+  if (textureApplies(WP_BUFFERS_ARG m.info.y, c)) {
+    m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG m.info.y, c);
   }
-  if (m.info.z != WP_INVALID) {
-    vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.z, s.uv);
+  if (textureApplies(WP_BUFFERS_ARG m.info.z, c)) {
+    vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.z, c);
     m.surface.x *= t.z;
     m.surface.y *= t.y;
   }
@@ -106,10 +105,10 @@ WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
 // the interpolated normal. Falls back to the unmapped normal where there is no frame or the
 // result would face away from the geometric front.
 WP_FN vec3 normalMapped(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
-  if (m.info.w == WP_INVALID || !s.hasUv) {
+  if (!textureApplies(WP_BUFFERS_ARG m.info.w, s.texCoords)) {
     return s.shadingNormal;
   }
-  vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.w, s.uv);
+  vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.w, s.texCoords);
   float scale = m.normalMap.x;
   vec3 tangentSpace = make_vec3((2.0f * t.x - 1.0f) * scale, (2.0f * t.y - 1.0f) * scale, 2.0f * t.z - 1.0f);
   vec3 n = s.shadingNormal;

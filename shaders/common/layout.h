@@ -68,7 +68,8 @@ WP_FN BvhNode withRightChild(BvhNode n, vec3 boundsMin, vec3 boundsMax, uint ind
 }
 
 // Triangle in object space, stored in BVH leaf order: 64 bytes.
-//   v0: xyz: vertex 0
+//   v0: xyz: vertex 0; w: 1 if its material's alphaMode is MASK or BLEND (the traversal then
+//     tests its coverage, alpha.h), 0 if opaque
 //   edge1: xyz: v1 - v0
 //   edge2: xyz: v2 - v0
 //   info: x: material index, y: emitter ordinal within its mesh or WP_INVALID
@@ -79,6 +80,8 @@ WP_FN BvhNode withRightChild(BvhNode n, vec3 boundsMin, vec3 boundsMax, uint ind
   F(uvec4, info)
 WP_RECORD(GpuTriangle)
 WP_FN vec3 triangleVertex0(GpuTriangle t) { return make_vec3(t.v0.x, t.v0.y, t.v0.z); }
+// Kept in v0.w, which the traversal loads anyway, so opaque triangles cost no extra fetch.
+WP_FN bool triangleAlphaTested(GpuTriangle t) { return t.v0.w != 0.0f; }
 WP_FN vec3 triangleEdge1(GpuTriangle t) { return make_vec3(t.edge1.x, t.edge1.y, t.edge1.z); }
 WP_FN vec3 triangleEdge2(GpuTriangle t) { return make_vec3(t.edge2.x, t.edge2.y, t.edge2.z); }
 WP_FN uint triangleMaterial(GpuTriangle t) { return t.info.x; }
@@ -95,10 +98,15 @@ WP_FN GpuTriangle makeGpuTriangle(vec3 v0, vec3 v1, vec3 v2, uint material, uint
   t.info = make_uvec4(material, emitter, 0u, 0u);
   return t;
 }
+// Marks it alpha-tested (its material is MASK or BLEND), or not.
+WP_FN GpuTriangle withTriangleAlphaTested(GpuTriangle t, bool alphaTested) {
+  t.v0.w = alphaTested ? 1.0f : 0.0f;
+  return t;
+}
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
-// light samples, for the emissive texture), so the traversal's triangle records stay 64
-// bytes: 128 bytes.
+// light samples, for the emissive texture, and the alpha test), so the traversal's triangle
+// records stay 64 bytes: 160 bytes.
 //   normal0..2: xyz: object-space unit vertex normals (glTF NORMAL), all three zero: shade
 //     with the geometric normal (flat); w: TEXCOORD_0's u at the three vertices
 //   v: xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
@@ -106,6 +114,8 @@ WP_FN GpuTriangle makeGpuTriangle(vec3 v0, vec3 v1, vec3 v2, uint material, uint
 //     without COLOR_0
 //   tangent0..2: xyz: object-space unit glTF TANGENTs, w: bitangent sign (+-1); all zero
 //     without TANGENT (the frame then comes from the uv gradient)
+//   texCoord1Vertices01: TEXCOORD_1 at vertices 0 (xy) and 1 (zw)
+//   texCoord1Vertex2: xy: TEXCOORD_1 at vertex 2, z: 1 if the mesh has TEXCOORD_1, w: unused
 #define WP_FIELDS_GpuTriangleShading(F) \
   F(vec4, normal0)                      \
   F(vec4, normal1)                      \
@@ -114,7 +124,9 @@ WP_FN GpuTriangle makeGpuTriangle(vec3 v0, vec3 v1, vec3 v2, uint material, uint
   F(uvec4, colors)                      \
   F(vec4, tangent0)                     \
   F(vec4, tangent1)                     \
-  F(vec4, tangent2)
+  F(vec4, tangent2)                     \
+  F(vec4, texCoord1Vertices01)          \
+  F(vec4, texCoord1Vertex2)
 WP_RECORD(GpuTriangleShading)
 WP_FN vec3 vertexNormal0(GpuTriangleShading s) { return make_vec3(s.normal0.x, s.normal0.y, s.normal0.z); }
 WP_FN vec3 vertexNormal1(GpuTriangleShading s) { return make_vec3(s.normal1.x, s.normal1.y, s.normal1.z); }
@@ -123,6 +135,10 @@ WP_FN vec2 vertexUv0(GpuTriangleShading s) { return make_vec2(s.normal0.w, s.v.x
 WP_FN vec2 vertexUv1(GpuTriangleShading s) { return make_vec2(s.normal1.w, s.v.y); }
 WP_FN vec2 vertexUv2(GpuTriangleShading s) { return make_vec2(s.normal2.w, s.v.z); }
 WP_FN bool hasUv(GpuTriangleShading s) { return s.v.w != 0.0f; }
+WP_FN vec2 vertexTexCoord1At0(GpuTriangleShading s) { return make_vec2(s.texCoord1Vertices01.x, s.texCoord1Vertices01.y); }
+WP_FN vec2 vertexTexCoord1At1(GpuTriangleShading s) { return make_vec2(s.texCoord1Vertices01.z, s.texCoord1Vertices01.w); }
+WP_FN vec2 vertexTexCoord1At2(GpuTriangleShading s) { return make_vec2(s.texCoord1Vertex2.x, s.texCoord1Vertex2.y); }
+WP_FN bool hasTexCoord1(GpuTriangleShading s) { return s.texCoord1Vertex2.z != 0.0f; }
 // COLOR_0 as RGBA8 (r in the low byte).
 WP_FN uint vertexColor0(GpuTriangleShading s) { return s.colors.x; }
 WP_FN uint vertexColor1(GpuTriangleShading s) { return s.colors.y; }
@@ -137,6 +153,8 @@ WP_FN GpuTriangleShading makeGpuTriangleShading(vec3 normal0, vec3 normal1, vec3
                                                 vec2 uv2, bool hasUv, uint color0, uint color1, uint color2,
                                                 vec4 tangent0, vec4 tangent1, vec4 tangent2) {
   GpuTriangleShading s;
+  s.texCoord1Vertices01 = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
+  s.texCoord1Vertex2 = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
   s.normal0 = make_vec4(normal0.x, normal0.y, normal0.z, uv0.x);
   s.normal1 = make_vec4(normal1.x, normal1.y, normal1.z, uv1.x);
   s.normal2 = make_vec4(normal2.x, normal2.y, normal2.z, uv2.x);
@@ -147,6 +165,12 @@ WP_FN GpuTriangleShading makeGpuTriangleShading(vec3 normal0, vec3 normal1, vec3
   s.tangent2 = tangent2;
   return s;
 }
+// The triangle's TEXCOORD_1 at its three vertices (a mesh without the set keeps none).
+WP_FN GpuTriangleShading withTexCoord1(GpuTriangleShading s, vec2 texCoord1At0, vec2 texCoord1At1, vec2 texCoord1At2) {
+  s.texCoord1Vertices01 = make_vec4(texCoord1At0.x, texCoord1At0.y, texCoord1At1.x, texCoord1At1.y);
+  s.texCoord1Vertex2 = make_vec4(texCoord1At2.x, texCoord1At2.y, 1.0f, 0.0f);
+  return s;
+}
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
 #define WP_TEXTURE_WRAP_REPEAT 0u
@@ -154,11 +178,17 @@ WP_FN GpuTriangleShading makeGpuTriangleShading(vec3 normal0, vec3 normal1, vec3
 #define WP_TEXTURE_WRAP_MIRROR 2u
 #define WP_TEXTURE_SRGB 16u     // texels are sRGB-encoded colour (decoded before filtering)
 #define WP_TEXTURE_NEAREST 32u  // nearest texel instead of bilinear
+#define WP_TEXTURE_TEXCOORD1 64u  // looked up with TEXCOORD_1 instead of TEXCOORD_0
 
-// A texture's header: 16 bytes.
+// A texture as one material slot uses it (glTF textureInfo): the image and sampler, and the
+// slot's texCoord set and KHR_texture_transform; 48 bytes.
 //   info: x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
+//   uvTransformU, uvTransformV: xyz: the rows of the 2x3 matrix that takes (u, v, 1) to the
+//     coordinates looked up (KHR_texture_transform's offset, rotation and scale); w: unused
 #define WP_FIELDS_GpuTexture(F) \
-  F(uvec4, info)
+  F(uvec4, info)                \
+  F(vec4, uvTransformU)         \
+  F(vec4, uvTransformV)
 WP_RECORD(GpuTexture)
 WP_FN uint textureFirstTexel(GpuTexture t) { return t.info.x; }
 WP_FN uint textureWidth(GpuTexture t) { return t.info.y; }
@@ -167,11 +197,24 @@ WP_FN uint textureWrapS(GpuTexture t) { return t.info.w & 3u; }
 WP_FN uint textureWrapT(GpuTexture t) { return (t.info.w >> 2u) & 3u; }
 WP_FN bool textureIsSrgb(GpuTexture t) { return (t.info.w & WP_TEXTURE_SRGB) != 0u; }
 WP_FN bool textureIsNearest(GpuTexture t) { return (t.info.w & WP_TEXTURE_NEAREST) != 0u; }
+WP_FN bool textureUsesTexCoord1(GpuTexture t) { return (t.info.w & WP_TEXTURE_TEXCOORD1) != 0u; }
+WP_FN vec3 textureUvTransformU(GpuTexture t) { return make_vec3(t.uvTransformU.x, t.uvTransformU.y, t.uvTransformU.z); }
+WP_FN vec3 textureUvTransformV(GpuTexture t) { return make_vec3(t.uvTransformV.x, t.uvTransformV.y, t.uvTransformV.z); }
+// On TEXCOORD_0 without a transform; withTexCoords sets both.
 WP_FN GpuTexture makeGpuTexture(uint firstTexel, uint width, uint height, uint wrapS, uint wrapT, bool srgb,
                                 bool nearest) {
   GpuTexture t;
   uint flags = wrapS | (wrapT << 2u) | (srgb ? WP_TEXTURE_SRGB : 0u) | (nearest ? WP_TEXTURE_NEAREST : 0u);
   t.info = make_uvec4(firstTexel, width, height, flags);
+  t.uvTransformU = make_vec4(1.0f, 0.0f, 0.0f, 0.0f);
+  t.uvTransformV = make_vec4(0.0f, 1.0f, 0.0f, 0.0f);
+  return t;
+}
+// The slot's coordinate set (TEXCOORD_1 or _0) and the rows of its transform.
+WP_FN GpuTexture withTexCoords(GpuTexture t, bool texCoord1, vec3 uvTransformU, vec3 uvTransformV) {
+  t.info.w = (t.info.w & ~WP_TEXTURE_TEXCOORD1) | (texCoord1 ? WP_TEXTURE_TEXCOORD1 : 0u);
+  t.uvTransformU = make_vec4(uvTransformU.x, uvTransformU.y, uvTransformU.z, 0.0f);
+  t.uvTransformV = make_vec4(uvTransformV.x, uvTransformV.y, uvTransformV.z, 0.0f);
   return t;
 }
 
@@ -269,7 +312,7 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
 #define WP_MATERIAL_GLTF_DISNEY_DIFFUSE 2u  // the mixture with the seed's Disney diffuse base
                                             // (extras.wavepath.diffuse = "disney")
 
-// A surface material, 112 bytes.
+// A surface material, 128 bytes.
 //   baseColor: rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
 //   emission: rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
 //   surface: x: metallic, y: perceptual roughness, z: ior, w: transmission
@@ -280,6 +323,7 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
 //   normalMap: x: the normal texture's scale, yzw: unused
 //   emissiveMap: x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none), yzw:
 //     unused
+//   alphaInfo: x: WP_ALPHA_* (glTF alphaMode), y: asUint(alphaCutoff), zw: unused
 #define WP_FIELDS_GpuMaterial(F) \
   F(vec4, baseColor)             \
   F(vec4, emission)              \
@@ -287,8 +331,16 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
   F(vec4, attenuation)           \
   F(uvec4, info)                 \
   F(vec4, normalMap)             \
-  F(uvec4, emissiveMap)
+  F(uvec4, emissiveMap)          \
+  F(uvec4, alphaInfo)
 WP_RECORD(GpuMaterial)
+
+// GpuMaterial alpha modes (glTF alphaMode): what the base colour's alpha means.
+#define WP_ALPHA_OPAQUE 0u  // nothing: the surface is opaque
+#define WP_ALPHA_MASK 1u    // opaque where alpha >= alphaCutoff, absent elsewhere
+#define WP_ALPHA_BLEND 2u   // a ray passes with probability 1 - alpha (alpha.h)
+WP_FN uint materialAlphaMode(GpuMaterial m) { return m.alphaInfo.x; }
+WP_FN float materialAlphaCutoff(GpuMaterial m) { return asFloat(m.alphaInfo.y); }
 
 // GpuLight.info.y: what the light is, in the low bits, and its flags above them.
 #define WP_LIGHT_TRIANGLE 0u     // an emissive triangle (an area light)

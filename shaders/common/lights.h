@@ -170,8 +170,7 @@ WP_FN LightSample sampleLightTriangle(WP_BUFFERS GpuLight light, vec3 position, 
   vec3 emission = lightEmission(light);
   if (triangleLightTexture(light) != WP_INVALID) {
     GpuTriangleShading shading = WP_LOAD(triangleShading, triangleLightShading(light));
-    emission = texturedEmission(WP_BUFFERS_ARG emission, triangleLightTexture(light), hasUv(shading),
-                                uvAt(shading, b));
+    emission = texturedEmission(WP_BUFFERS_ARG emission, triangleLightTexture(light), texCoordsAt(shading, b));
   }
   s.radiance = emittedRadiance(emission, lightIsDoubleSided(light), n, -s.direction);
   return s;

@@ -10,12 +10,20 @@
 WP_BEGIN
 
 
+// The texture coordinate sets at a point, for texture lookups (texture.h): each slot picks its
+// set and transforms it.
+WP_STRUCT(TexCoords)
+  vec2 set0;     // TEXCOORD_0, if hasSet0
+  vec2 set1;     // TEXCOORD_1, if hasSet1
+  bool hasSet0;
+  bool hasSet1;
+WP_STRUCT_END(TexCoords)
+
 WP_STRUCT(SurfaceHit)
   vec3 position;
   vec3 normal;         // unit geometric normal, front side (counter-clockwise winding, outside)
   vec3 shadingNormal;  // unit interpolated vertex normal on the front side; `normal` if none
-  vec2 uv;             // TEXCOORD_0 at the hit, if hasUv
-  bool hasUv;
+  TexCoords texCoords; // at the hit; none on spheres and planes
   vec4 color;          // COLOR_0 at the hit (white without)
   vec3 tangent;        // unit world-space tangent-space +X (normal mapping): glTF TANGENT,
                        // or else the triangle's dP/du; zero when there is neither
@@ -56,14 +64,40 @@ WP_FN vec2 uvAt(GpuTriangleShading shading, vec2 b) {
   return vertexUv0(shading) * (1.0f - b.x - b.y) + vertexUv1(shading) * b.x + vertexUv2(shading) * b.y;
 }
 
+// Both texture coordinate sets at barycentrics b of a triangle.
+WP_FN TexCoords texCoordsAt(GpuTriangleShading shading, vec2 b) {
+  TexCoords c;
+  c.set0 = uvAt(shading, b);
+  c.set1 = vertexTexCoord1At0(shading) * (1.0f - b.x - b.y) + vertexTexCoord1At1(shading) * b.x +
+           vertexTexCoord1At2(shading) * b.y;
+  c.hasSet0 = hasUv(shading);
+  c.hasSet1 = hasTexCoord1(shading);
+  return c;
+}
+
+// No texture coordinates (spheres, planes).
+WP_FN TexCoords noTexCoords() {
+  TexCoords c;
+  c.set0 = make_vec2(0.0f, 0.0f);
+  c.set1 = c.set0;
+  c.hasSet0 = false;
+  c.hasSet1 = false;
+  return c;
+}
+
+// COLOR_0 (RGBA, white without) at barycentrics b (of vertices 1 and 2) of a triangle.
+WP_FN vec4 colorAt(GpuTriangleShading shading, vec2 b) {
+  return unpackUnorm8(vertexColor0(shading)) * (1.0f - b.x - b.y) + unpackUnorm8(vertexColor1(shading)) * b.x +
+         unpackUnorm8(vertexColor2(shading)) * b.y;
+}
+
 // `instanceField` and `primitive` are hitInstanceField and hitPrimitive of a hit at the
 // normalized shutter time `time` the ray was traced at (moving instances are placed then).
 WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
   SurfaceHit s;
   s.position = position;
   s.light = WP_INVALID;
-  s.uv = make_vec2(0.0f, 0.0f);
-  s.hasUv = false;
+  s.texCoords = noTexCoords();
   s.color = make_vec4(1.0f, 1.0f, 1.0f, 1.0f);
   s.tangent = make_vec3(1.0f, 0.0f, 0.0f);
   s.bitangent = make_vec3(0.0f, 1.0f, 0.0f);
@@ -89,10 +123,8 @@ WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 p
   GpuTriangleShading shading = WP_LOAD(triangleShading, primitive);
   vec2 b = barycentricsAt(tri, pointToObject(inst, position));
   vec3 n = vertexNormal0(shading) * (1.0f - b.x - b.y) + vertexNormal1(shading) * b.x + vertexNormal2(shading) * b.y;
-  s.hasUv = hasUv(shading);
-  s.uv = uvAt(shading, b);
-  s.color = unpackUnorm8(vertexColor0(shading)) * (1.0f - b.x - b.y) + unpackUnorm8(vertexColor1(shading)) * b.x +
-            unpackUnorm8(vertexColor2(shading)) * b.y;
+  s.texCoords = texCoordsAt(shading, b);
+  s.color = colorAt(shading, b);
   // The file's TANGENT (glTF: bitangent = w cross(normal, tangent), in object space, so a
   // mirroring instance transform mirrors it along with the rest), else the triangle's uv
   // gradient: [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2].
@@ -111,7 +143,7 @@ WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 p
   if (dot(tangent, tangent) > 1e-12f && dot(bitangent, bitangent) > 1e-12f) {
     s.tangent = directionToWorld(inst, tangent);
     s.bitangent = directionToWorld(inst, bitangent);
-  } else if (s.hasUv && determinant != 0.0f) {
+  } else if (s.texCoords.hasSet0 && determinant != 0.0f) {
     s.tangent = directionToWorld(inst, (e1 * dv2 - e2 * dv1) / determinant);
     s.bitangent = -directionToWorld(inst, (e2 * du1 - e1 * du2) / determinant);
   } else {

@@ -1,5 +1,6 @@
 // Textures sampled by hand from the texel buffer (RGBA8 packed in uints), so both backends
-// share one implementation: wrap modes per axis, nearest or bilinear filtering, sRGB decode.
+// share one implementation: each slot's texture coordinate set and KHR_texture_transform,
+// wrap modes per axis, nearest or bilinear filtering, sRGB decode.
 #ifndef WP_TEXTURE_H
 #define WP_TEXTURE_H
 
@@ -37,10 +38,10 @@ WP_FN vec4 texelAt(WP_BUFFERS GpuTexture t, int x, int y) {
   return c;
 }
 
-// The texture at uv (glTF: origin at the image's top-left, v down). Bilinear filtering
-// blends in linear space (after the sRGB decode), as GPUs do with sRGB formats.
-WP_FN vec4 sampleTexture(WP_BUFFERS uint index, vec2 uv) {
-  GpuTexture t = WP_LOAD(textures, index);
+// Texture t at uv (glTF: origin at the image's top-left, v down), uv already transformed.
+// Bilinear filtering blends in linear space (after the sRGB decode), as GPUs do with sRGB
+// formats.
+WP_FN vec4 filterTexture(WP_BUFFERS GpuTexture t, vec2 uv) {
   int width = toInt(textureWidth(t));
   int height = toInt(textureHeight(t));
   uint wrapS = textureWrapS(t);
@@ -65,14 +66,38 @@ WP_FN vec4 sampleTexture(WP_BUFFERS uint index, vec2 uv) {
   return top * (1.0f - ay) + bottom * ay;
 }
 
+// The coordinates texture t looks up at c: its slot's set (glTF texCoord, or the
+// KHR_texture_transform's own) through the slot's transform.
+WP_FN vec2 textureUv(GpuTexture t, TexCoords c) {
+  vec2 uv = textureUsesTexCoord1(t) ? c.set1 : c.set0;
+  vec3 p = make_vec3(uv.x, uv.y, 1.0f);
+  return make_vec2(dot(textureUvTransformU(t), p), dot(textureUvTransformV(t), p));
+}
+
+// Whether texture `index` (WP_INVALID: none) applies at c: it exists and the surface has its
+// coordinate set (without it the slot's factor stands alone).
+WP_FN bool textureApplies(WP_BUFFERS uint index, TexCoords c) {
+  if (index == WP_INVALID) {
+    return false;
+  }
+  return textureUsesTexCoord1(WP_LOAD(textures, index)) ? c.hasSet1 : c.hasSet0;
+}
+
+// Texture `index` at c, where textureApplies.
+WP_FN vec4 sampleTexture(WP_BUFFERS uint index, TexCoords c) {
+  GpuTexture t = WP_LOAD(textures, index);
+  return filterTexture(WP_BUFFERS_ARG t, textureUv(t, c));
+}
+
 // Emitted radiance `factor` (glTF: emissiveFactor times KHR_materials_emissive_strength)
-// times the emissive texture `index` at uv; the factor alone without a texture (WP_INVALID)
-// or without texture coordinates. Hits and light samples both take it from here, so they agree.
-WP_FN vec3 texturedEmission(WP_BUFFERS vec3 factor, uint index, bool withUv, vec2 uv) {
-  if (index == WP_INVALID || !withUv) {
+// times the emissive texture `index` at c; the factor alone without a texture (WP_INVALID)
+// or without its texture coordinates. Hits and light samples both take it from here, so they
+// agree.
+WP_FN vec3 texturedEmission(WP_BUFFERS vec3 factor, uint index, TexCoords c) {
+  if (!textureApplies(WP_BUFFERS_ARG index, c)) {
     return factor;
   }
-  vec4 t = sampleTexture(WP_BUFFERS_ARG index, uv);
+  vec4 t = sampleTexture(WP_BUFFERS_ARG index, c);
   return factor * make_vec3(t.x, t.y, t.z);
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -101,11 +102,22 @@ uint32_t gpuMaterialKind(Material::Bsdf bsdf) {
   return WP_MATERIAL_GLTF;
 }
 
+uint32_t gpuAlphaMode(Material::AlphaMode mode) {
+  switch (mode) {
+    case Material::AlphaMode::Mask: return WP_ALPHA_MASK;
+    case Material::AlphaMode::Blend: return WP_ALPHA_BLEND;
+    case Material::AlphaMode::Opaque: break;
+  }
+  return WP_ALPHA_OPAQUE;
+}
+
 void packTextures(const Scene& scene, GpuScene& out) {
   for (const Texture& texture : scene.textures) {
-    out.textures.push_back(gpu::makeGpuTexture(uint32_t(out.texels.size()), texture.width, texture.height,
-                                               uint32_t(texture.wrapS), uint32_t(texture.wrapT), texture.srgb,
-                                               texture.nearest));
+    const glm::mat3& m = texture.uvTransform;  // column-major: m[column][row]
+    out.textures.push_back(gpu::withTexCoords(
+        gpu::makeGpuTexture(uint32_t(out.texels.size()), texture.width, texture.height, uint32_t(texture.wrapS),
+                            uint32_t(texture.wrapT), texture.srgb, texture.nearest),
+        texture.texCoord == 1, glm::vec3(m[0][0], m[1][0], m[2][0]), glm::vec3(m[0][1], m[1][1], m[2][1])));
     out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
   }
   // The Vulkan texel view reads four texels per RGBA32UI element.
@@ -121,8 +133,8 @@ double seconds(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Vertex normals, TEXCOORD_0, COLOR_0 and TANGENT of triangle t (zero normals, uvs and
-// tangents, white, where the mesh has none).
+// Vertex normals, TEXCOORD_0 and _1, COLOR_0 and TANGENT of triangle t (zero normals, uvs
+// and tangents, white, where the mesh has none).
 gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
   const uint32_t* corner = &mesh.indices[3 * t];
   auto normal = [&](int k) { return mesh.normals.empty() ? glm::vec3(0.0f) : mesh.normals[corner[k]]; };
@@ -133,8 +145,11 @@ gpu::GpuTriangleShading shadingOf(const Mesh& mesh, size_t t) {
     return bytes.r | (bytes.g << 8u) | (bytes.b << 16u) | (bytes.a << 24u);
   };
   auto tangent = [&](int k) { return mesh.tangents.empty() ? glm::vec4(0.0f) : mesh.tangents[corner[k]]; };
-  return gpu::makeGpuTriangleShading(normal(0), normal(1), normal(2), uv(0), uv(1), uv(2), !mesh.uvs.empty(),
-                                     color(0), color(1), color(2), tangent(0), tangent(1), tangent(2));
+  gpu::GpuTriangleShading shading =
+      gpu::makeGpuTriangleShading(normal(0), normal(1), normal(2), uv(0), uv(1), uv(2), !mesh.uvs.empty(), color(0),
+                                  color(1), color(2), tangent(0), tangent(1), tangent(2));
+  if (mesh.uvs1.empty()) return shading;
+  return gpu::withTexCoord1(shading, mesh.uvs1[corner[0]], mesh.uvs1[corner[1]], mesh.uvs1[corner[2]]);
 }
 
 bool isInvertible(const glm::mat4& toWorld) {
@@ -375,7 +390,9 @@ void writeTriangles(const Scene& scene, const Mesh& mesh, const Bvh& bvh, MeshPr
                                     textureIndex(material.emissiveTexture));
       emitter.weight = std::max(luminance(mean), kMinimumTextureShare * luminance(material.emission));
     }
-    out.triangles[packed] = gpu::makeGpuTriangle(v[0], v[1], v[2], mesh.materials[t], prims.ordinal[t]);
+    out.triangles[packed] =
+        gpu::withTriangleAlphaTested(gpu::makeGpuTriangle(v[0], v[1], v[2], mesh.materials[t], prims.ordinal[t]),
+                                     scene.materials[mesh.materials[t]].isAlphaTested());
     out.triangleShading[packed] = shading;
   }
 }
@@ -503,7 +520,8 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
                     textureIndex(material.baseColorTexture), textureIndex(material.metallicRoughnessTexture),
                     textureIndex(material.normalTexture)),
          glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f),
-         glm::uvec4(textureIndex(material.emissiveTexture), 0u, 0u, 0u)});
+         glm::uvec4(textureIndex(material.emissiveTexture), 0u, 0u, 0u),
+         glm::uvec4(gpuAlphaMode(material.alphaMode), std::bit_cast<uint32_t>(material.alphaCutoff), 0u, 0u)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

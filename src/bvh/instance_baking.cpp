@@ -5,6 +5,22 @@
 
 namespace wp {
 
+namespace {
+
+// Appends a mesh's texture coordinates `source` (of the vertices from `base` to `end` of the
+// baked mesh) to the baked mesh's `target`, zero-filled where either side has none.
+void appendTexCoords(const std::vector<glm::vec2>& source, uint32_t base, size_t end, std::vector<glm::vec2>& target) {
+  if (source.empty() && target.empty()) return;
+  target.resize(base, glm::vec2(0.0f));
+  if (source.empty()) {
+    target.resize(end, glm::vec2(0.0f));
+  } else {
+    target.insert(target.end(), source.begin(), source.end());
+  }
+}
+
+}  // namespace
+
 Scene bakeSingleUseMeshes(const Scene& scene) {
   std::vector<uint32_t> uses(scene.meshes.size(), 0);
   for (const MeshInstance& inst : scene.instances) {
@@ -67,14 +83,8 @@ Scene bakeSingleUseMeshes(const Scene& scene) {
         baked.colors.insert(baked.colors.end(), mesh.colors.begin(), mesh.colors.end());
       }
     }
-    if (!mesh.uvs.empty() || !baked.uvs.empty()) {
-      baked.uvs.resize(base, glm::vec2(0.0f));
-      if (mesh.uvs.empty()) {
-        baked.uvs.resize(baked.positions.size(), glm::vec2(0.0f));
-      } else {
-        baked.uvs.insert(baked.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
-      }
-    }
+    appendTexCoords(mesh.uvs, base, baked.positions.size(), baked.uvs);
+    appendTexCoords(mesh.uvs1, base, baked.positions.size(), baked.uvs1);
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1], c = mesh.indices[3 * t + 2];
       if (det < 0.0f) {

@@ -10,22 +10,24 @@ namespace wp {
 
 glm::vec3 meanEmission(const std::vector<gpu::GpuTexture>& textures, const std::vector<uint32_t>& texels,
                        const gpu::GpuTriangleShading& shading, glm::vec3 factor, uint32_t texture) {
-  if (texture == WP_INVALID || !gpu::hasUv(shading)) {
+  gpu::DeviceBuffers buffers{};
+  buffers.textures = textures.data();
+  buffers.texels = texels.data();
+  if (!gpu::textureApplies(buffers, texture, gpu::texCoordsAt(shading, {0.0f, 0.0f}))) {
     return factor;
   }
-  const glm::vec2 texelsPerUnit(gpu::textureWidth(textures[texture]), gpu::textureHeight(textures[texture]));
-  const glm::vec2 uv[3] = {gpu::uvAt(shading, {0.0f, 0.0f}), gpu::uvAt(shading, {1.0f, 0.0f}),
-                           gpu::uvAt(shading, {0.0f, 1.0f})};
+  const gpu::GpuTexture& t = textures[texture];
+  const glm::vec2 texelsPerUnit(gpu::textureWidth(t), gpu::textureHeight(t));
+  const glm::vec2 uv[3] = {gpu::textureUv(t, gpu::texCoordsAt(shading, {0.0f, 0.0f})),
+                           gpu::textureUv(t, gpu::texCoordsAt(shading, {1.0f, 0.0f})),
+                           gpu::textureUv(t, gpu::texCoordsAt(shading, {0.0f, 1.0f}))};
   float extent = 0.0f;
   for (int k = 0; k < 3; ++k) {
     extent = std::max(extent, glm::length((uv[(k + 1) % 3] - uv[k]) * texelsPerUnit));
   }
   const int n = std::clamp(static_cast<int>(std::ceil(extent)), 4, 32);
-  gpu::DeviceBuffers buffers{};
-  buffers.textures = textures.data();
-  buffers.texels = texels.data();
   auto at = [&](float b1, float b2) {
-    return gpu::texturedEmission(buffers, factor, texture, true, gpu::uvAt(shading, {b1, b2}));
+    return gpu::texturedEmission(buffers, factor, texture, gpu::texCoordsAt(shading, {b1, b2}));
   };
   // Splitting each edge into n parts makes n (n + 1) / 2 upright sub-triangles, with corners
   // (i, j), (i + 1, j), (i, j + 1) in units of 1 / n, and n (n - 1) / 2 inverted ones.

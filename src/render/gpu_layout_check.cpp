@@ -10,11 +10,11 @@ namespace wp::gpu {
 
 static_assert(sizeof(BvhNode) == 64);
 static_assert(sizeof(GpuTriangle) == 64);
-static_assert(sizeof(GpuTriangleShading) == 128);
-static_assert(sizeof(GpuTexture) == 16);
+static_assert(sizeof(GpuTriangleShading) == 160);
+static_assert(sizeof(GpuTexture) == 48);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(sizeof(GpuPlane) == 32);
-static_assert(sizeof(GpuMaterial) == 112);
+static_assert(sizeof(GpuMaterial) == 128);
 static_assert(sizeof(GpuLight) == 96);
 static_assert(sizeof(ThinLens) == 80);
 static_assert(sizeof(GpuEnvironment) == 32);

@@ -9,7 +9,7 @@
 namespace wp::gltf {
 
 // Every extension the loader implements. Add an entry here when the loader learns one.
-inline constexpr std::array<std::string_view, 9> kSupportedExtensions{
+inline constexpr std::array<std::string_view, 10> kSupportedExtensions{
     "EXT_meshopt_compression",
     "EXT_texture_webp",
     "KHR_draco_mesh_compression",
@@ -19,6 +19,7 @@ inline constexpr std::array<std::string_view, 9> kSupportedExtensions{
     "KHR_materials_transmission",
     "KHR_materials_volume",
     "KHR_mesh_quantization",
+    "KHR_texture_transform",
 };
 
 // Texture extensions whose images wavepath cannot decode (Debian has no decoder for KTX2's

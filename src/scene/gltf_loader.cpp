@@ -96,6 +96,7 @@ public:
                                gltf::cameraList(ctx_) + "); give a camera's index or name");
     }
     if (usesDefaultMaterial()) scene_.materials.push_back(gltf::defaultMaterial());
+    warnAboutShapeAlpha();
     if (!scene_.hasCamera) scene_.camera = frameScene(scene_);
     if (options_.defaultSky) {
       const DefaultLighting lighting = chooseDefaultLighting(scene_, ctx_.file);
@@ -299,6 +300,18 @@ private:
 
   void skipSingular(const std::string& where, const char* what) {
     gltf::warnAt(ctx_, where, std::string("its transform is singular (a scale of 0?), so its ") + what + " is skipped");
+  }
+
+  // Only triangles test coverage (shaders/common/alpha.h): the analytic shapes say so.
+  void warnAboutShapeAlpha() const {
+    size_t shapes = 0;
+    for (const Sphere& sphere : scene_.spheres) shapes += scene_.materials[sphere.material].isAlphaTested() ? 1 : 0;
+    for (const Plane& plane : scene_.planes) shapes += scene_.materials[plane.material].isAlphaTested() ? 1 : 0;
+    if (shapes > 0) {
+      gltf::warnAt(ctx_, "", std::to_string(shapes) +
+                                 " wavepath spheres or planes have a material with alphaMode MASK or BLEND, which "
+                                 "they ignore: they render opaque (only triangles are cut out or see-through)");
+    }
   }
 
   bool usesDefaultMaterial() const {

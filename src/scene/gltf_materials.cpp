@@ -89,6 +89,22 @@ Material::Bsdf readBsdf(const Context& ctx, const tinygltf::Material& material, 
   return hasDiffuse && text("diffuse") == "disney" ? Material::Bsdf::GltfDisneyDiffuse : Material::Bsdf::Gltf;
 }
 
+// glTF alphaMode and alphaCutoff (which only MASK reads).
+void readAlpha(const Context& ctx, const tinygltf::Material& material, const std::string& where, Material& out) {
+  const std::string& mode = material.alphaMode;
+  if (mode == "MASK") {
+    out.alphaMode = Material::AlphaMode::Mask;
+  } else if (mode == "BLEND") {
+    out.alphaMode = Material::AlphaMode::Blend;
+  } else if (mode != "OPAQUE" && !mode.empty()) {
+    fail(ctx, where, "alphaMode '" + oneLine(mode.substr(0, 40)) + "' is not OPAQUE, MASK or BLEND; fix the material");
+  }
+  if (!(material.alphaCutoff >= 0.0 && std::isfinite(material.alphaCutoff))) {
+    fail(ctx, where, "alphaCutoff must be a finite number >= 0; fix the material");
+  }
+  out.alphaCutoff = static_cast<float>(material.alphaCutoff);
+}
+
 Material convert(const Context& ctx, const tinygltf::Material& material, size_t index) {
   const std::string where = describe("material", index, material.name);
   const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
@@ -106,6 +122,7 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   // glTF limits the factors to [0, 1]; an albedo above 1 would create energy.
   out.baseColor = glm::clamp(glm::vec3(base[0], base[1], base[2]), 0.0f, 1.0f);
   out.alpha = std::clamp(static_cast<float>(base[3]), 0.0f, 1.0f);
+  readAlpha(ctx, material, where, out);
   out.metallic = std::clamp(static_cast<float>(pbr.metallicFactor), 0.0f, 1.0f);
   out.roughness = std::clamp(static_cast<float>(pbr.roughnessFactor), 0.0f, 1.0f);
   // KHR_materials_ior allows 0 for "no refraction"; wavepath's glass needs an index >= 1.
@@ -131,33 +148,26 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   return out;
 }
 
-// Reads the base colour, metallic-roughness, normal and emissive textures into `table`;
-// returns whether the material has textures that wavepath ignores (occlusion, or a texture
-// on another TEXCOORD set than 0).
+// Reads the base colour, metallic-roughness, normal and emissive textures into `table`, each
+// with its texCoord and KHR_texture_transform; returns whether the material has textures
+// that wavepath ignores (occlusion, or a texture on TEXCOORD_2 or later).
 bool readTextures(const tinygltf::Material& material, const std::string& where,
                   TextureTable& table, Material& out) {
   bool ignored = material.occlusionTexture.index >= 0;
+  // The slot's index in `table` (-1: none), noting a texture it had to leave out.
+  const auto slot = [&](const auto& info, bool srgb) {
+    if (info.index < 0) return -1;
+    const int added = table.add(info, srgb, where);
+    ignored = ignored || added < 0;
+    return added;
+  };
   const tinygltf::NormalTextureInfo& normal = material.normalTexture;
-  if (normal.index >= 0 && normal.texCoord == 0) {
-    out.normalTexture = table.add(normal.index, false, where);
-    out.normalScale = std::isfinite(normal.scale) ? static_cast<float>(normal.scale) : 1.0f;
-  }
-  ignored = ignored || (normal.index >= 0 && normal.texCoord != 0);
-  const tinygltf::TextureInfo& base = material.pbrMetallicRoughness.baseColorTexture;
-  if (base.index >= 0 && base.texCoord == 0) {
-    out.baseColorTexture = table.add(base.index, true, where);
-  }
-  const tinygltf::TextureInfo& metallicRoughness = material.pbrMetallicRoughness.metallicRoughnessTexture;
-  if (metallicRoughness.index >= 0 && metallicRoughness.texCoord == 0) {
-    out.metallicRoughnessTexture = table.add(metallicRoughness.index, false, where);
-  }
-  const tinygltf::TextureInfo& emissive = material.emissiveTexture;
-  if (emissive.index >= 0 && emissive.texCoord == 0) {
-    out.emissiveTexture = table.add(emissive.index, true, where);
-  }
-  return ignored || (base.index >= 0 && base.texCoord != 0) ||
-         (metallicRoughness.index >= 0 && metallicRoughness.texCoord != 0) ||
-         (emissive.index >= 0 && emissive.texCoord != 0);
+  out.normalTexture = slot(normal, false);
+  if (out.normalTexture >= 0) out.normalScale = std::isfinite(normal.scale) ? static_cast<float>(normal.scale) : 1.0f;
+  out.baseColorTexture = slot(material.pbrMetallicRoughness.baseColorTexture, true);
+  out.metallicRoughnessTexture = slot(material.pbrMetallicRoughness.metallicRoughnessTexture, false);
+  out.emissiveTexture = slot(material.emissiveTexture, true);
+  return ignored;
 }
 
 }  // namespace
@@ -173,7 +183,7 @@ std::vector<Material> convertMaterials(const Context& ctx, std::vector<Texture>&
   }
   if (ignoring > 0) {
     warnAt(ctx, "", std::to_string(ignoring) + " of " + std::to_string(materials.size()) +
-                        " materials have occlusion textures, or textures on TEXCOORD_1 or "
+                        " materials have occlusion textures, or textures on TEXCOORD_2 or "
                         "later, which wavepath ignores: those render with their constant factors");
   }
   return materials;

@@ -47,6 +47,7 @@ struct VertexSource {
   int position = -1;
   int normal = -1;   // -1: none
   int uv = -1;       // TEXCOORD_0, -1: none
+  int uv1 = -1;      // TEXCOORD_1, -1: none
   int color = -1;    // COLOR_0, -1: none
   int tangent = -1;  // TANGENT, -1: none (also when there is no NORMAL: glTF then ignores it)
   // With morph targets or skins, the primitive: its targets and joints are read with its
@@ -54,8 +55,8 @@ struct VertexSource {
   int primitive = -1;
 
   bool operator<(const VertexSource& other) const {
-    return std::tie(position, normal, uv, color, tangent, primitive) <
-           std::tie(other.position, other.normal, other.uv, other.color, other.tangent, other.primitive);
+    return std::tie(position, normal, uv, uv1, color, tangent, primitive) <
+           std::tie(other.position, other.normal, other.uv, other.uv1, other.color, other.tangent, other.primitive);
   }
 };
 
@@ -105,11 +106,13 @@ private:
     const uint32_t material = materialOf(primitive, where);
     const auto normal = primitive.attributes.find("NORMAL");
     const auto uv = primitive.attributes.find("TEXCOORD_0");
+    const auto uv1 = primitive.attributes.find("TEXCOORD_1");
     const auto color = primitive.attributes.find("COLOR_0");
     const auto tangent = primitive.attributes.find("TANGENT");
     const bool hasNormal = normal != primitive.attributes.end();
     const VertexSource source{position->second, hasNormal ? normal->second : -1,
                               uv == primitive.attributes.end() ? -1 : uv->second,
+                              uv1 == primitive.attributes.end() ? -1 : uv1->second,
                               color == primitive.attributes.end() ? -1 : color->second,
                               hasNormal && tangent != primitive.attributes.end() ? tangent->second : -1,
                               deformation_ ? static_cast<int>(p) : -1};
@@ -149,6 +152,24 @@ private:
     return static_cast<uint32_t>(primitive.material);
   }
 
+  // Appends the `count` vertices' texture coordinates from `accessor` (zero where it is -1)
+  // to `target`, once a primitive of the mesh has them.
+  void addTexCoords(int accessor, const char* name, size_t count, const std::string& where,
+                    std::vector<glm::vec2>& target) {
+    if (accessor < 0 && target.empty()) return;
+    std::vector<glm::vec2> uvs(count, glm::vec2(0.0f));
+    if (accessor >= 0) {
+      uvs = readTexCoords(ctx_, accessor, where, name);
+      if (uvs.size() != count) {
+        fail(ctx_, where,
+             std::string(name) + " has " + std::to_string(uvs.size()) + " vertices but POSITION " +
+                 std::to_string(count) + "; re-export the file");
+      }
+    }
+    target.resize(mesh_.positions.size() - count, glm::vec2(0.0f));
+    target.insert(target.end(), uvs.begin(), uvs.end());
+  }
+
   // Appends the vertices of a POSITION (and NORMAL) accessor pair once per mesh (primitives
   // often share one vertex buffer) and returns its vertex count, as read (so checked).
   uint32_t addVertices(const VertexSource& source, const std::string& where) {
@@ -178,19 +199,8 @@ private:
     if (source.normal >= 0 || !mesh_.normals.empty()) {
       mesh_.normals.insert(mesh_.normals.end(), normals.begin(), normals.end());
     }
-    if (source.uv >= 0 || !mesh_.uvs.empty()) {
-      std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
-      if (source.uv >= 0) {
-        uvs = readTexCoords(ctx_, source.uv, where, "TEXCOORD_0");
-        if (uvs.size() != positions.size()) {
-          fail(ctx_, where,
-               "TEXCOORD_0 has " + std::to_string(uvs.size()) + " vertices but POSITION " +
-                   std::to_string(positions.size()) + "; re-export the file");
-        }
-      }
-      mesh_.uvs.resize(mesh_.positions.size() - positions.size(), glm::vec2(0.0f));
-      mesh_.uvs.insert(mesh_.uvs.end(), uvs.begin(), uvs.end());
-    }
+    addTexCoords(source.uv, "TEXCOORD_0", positions.size(), where, mesh_.uvs);
+    addTexCoords(source.uv1, "TEXCOORD_1", positions.size(), where, mesh_.uvs1);
     if (source.color >= 0 || !mesh_.colors.empty()) {
       std::vector<glm::vec4> colors(positions.size(), glm::vec4(1.0f));
       if (source.color >= 0) {

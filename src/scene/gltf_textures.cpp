@@ -1,6 +1,8 @@
 // glTF textures (image plus sampler) to wavepath textures.
 #include "scene/gltf_textures.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <string_view>
@@ -14,6 +16,7 @@ namespace wp::gltf {
 namespace {
 
 constexpr const char* kWebp = "EXT_texture_webp";
+constexpr const char* kTransform = "KHR_texture_transform";
 
 Texture::Wrap wrapOf(int mode) {
   if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return Texture::Wrap::Clamp;
@@ -59,6 +62,55 @@ int resolveImage(const Context& ctx, size_t index) {
        "has no image it can use (source " + std::to_string(texture.source) + "); re-export the file");
 }
 
+// `object.key` as `count` finite numbers (one: a number, more: an array), `fallback` where
+// absent; throws naming the key otherwise.
+std::vector<float> readNumbers(const Context& ctx, const tinygltf::Value& object, const char* key,
+                               std::vector<float> fallback, const std::string& where) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& value = object.Get(key);
+  const size_t count = fallback.size();
+  std::vector<float> numbers;
+  if (count == 1 && value.IsNumber()) numbers.push_back(float(value.GetNumberAsDouble()));
+  if (count > 1 && value.IsArray() && value.ArrayLen() == count) {
+    for (size_t i = 0; i < count; ++i) {
+      if (value.Get(int(i)).IsNumber()) numbers.push_back(float(value.Get(int(i)).GetNumberAsDouble()));
+    }
+  }
+  if (numbers.size() != count || !std::all_of(numbers.begin(), numbers.end(), [](float v) { return std::isfinite(v); })) {
+    fail(ctx, where,
+         std::string(kTransform) + "." + key + " must be " + (count == 1 ? "a finite number" : "2 finite numbers") +
+             "; fix the texture reference");
+  }
+  return numbers;
+}
+
+// KHR_texture_transform's matrix T(offset) R(rotation) S(scale), exactly as the extension's
+// GLSL writes it (R's columns (cos, sin) and (-sin, cos)), and its texCoord override (-1:
+// none).
+std::pair<glm::mat3, int> readTransform(const Context& ctx, const tinygltf::ExtensionMap& extensions,
+                                        const std::string& where) {
+  const auto it = extensions.find(kTransform);
+  if (it == extensions.end()) return {glm::mat3(1.0f), -1};
+  const tinygltf::Value& object = it->second;
+  const std::vector<float> offset = readNumbers(ctx, object, "offset", {0.0f, 0.0f}, where);
+  const float rotation = readNumbers(ctx, object, "rotation", {0.0f}, where)[0];
+  const std::vector<float> scale = readNumbers(ctx, object, "scale", {1.0f, 1.0f}, where);
+  int texCoord = -1;
+  if (object.Has("texCoord")) {
+    const tinygltf::Value& value = object.Get("texCoord");
+    texCoord = value.IsInt() && value.GetNumberAsInt() >= 0 ? value.GetNumberAsInt() : -2;
+    if (texCoord == -2) fail(ctx, where, std::string(kTransform) + ".texCoord must be an integer >= 0; fix the texture reference");
+  }
+  glm::mat3 translate(1.0f), rotate(1.0f), scaling(1.0f);  // column-major: m[column][row]
+  translate[2] = glm::vec3(offset[0], offset[1], 1.0f);
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  rotate[0] = glm::vec3(c, s, 0.0f);
+  rotate[1] = glm::vec3(-s, c, 0.0f);
+  scaling[0][0] = scale[0];
+  scaling[1][1] = scale[1];
+  return {translate * rotate * scaling, texCoord};
+}
+
 }  // namespace
 
 std::string describeImage(const tinygltf::Model& model, int index) {
@@ -100,8 +152,13 @@ const Rgba8Image& TextureTable::decoded(int index, const std::string& where) {
   }
 }
 
-int TextureTable::add(int index, bool srgb, const std::string& where) {
-  const auto key = std::make_pair(index, srgb);
+int TextureTable::add(int index, int texCoord, const tinygltf::ExtensionMap& extensions, bool srgb,
+                      const std::string& where) {
+  const auto [transform, transformTexCoord] = readTransform(ctx_, extensions, where);
+  if (transformTexCoord >= 0) texCoord = transformTexCoord;
+  if (texCoord != 0 && texCoord != 1) return -1;
+  const Key key{index, srgb, texCoord,
+                {transform[0][0], transform[1][0], transform[2][0], transform[0][1], transform[1][1], transform[2][1]}};
   if (const auto it = converted_.find(key); it != converted_.end()) return it->second;
   const auto& model = ctx_.model;
   if (index < 0 || static_cast<size_t>(index) >= model.textures.size()) {
@@ -116,6 +173,8 @@ int TextureTable::add(int index, bool srgb, const std::string& where) {
   texture.rgba.resize(size_t(texture.width) * texture.height);
   std::memcpy(texture.rgba.data(), image.rgba.data(), image.rgba.size());  // r in the low byte
   texture.srgb = srgb;
+  texture.texCoord = texCoord;
+  texture.uvTransform = transform;
   if (gltfTexture.sampler >= 0) {
     if (static_cast<size_t>(gltfTexture.sampler) >= model.samplers.size()) {
       fail(ctx_, where,

@@ -1,9 +1,10 @@
 // glTF textures (image plus sampler) to wavepath textures.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
-#include <utility>
+#include <tuple>
 #include <vector>
 
 #include "image/texture_decoder.h"
@@ -12,8 +13,9 @@
 
 namespace wp::gltf {
 
-// Converts each glTF texture a material uses once per colour space (a texture used as both
-// base colour and metallic-roughness becomes two), appending to `textures`. Its image is the
+// Converts each glTF texture a material uses once per colour space, texture coordinate set
+// and KHR_texture_transform (a texture used as both base colour and metallic-roughness
+// becomes two), appending to `textures`. Its image is the
 // EXT_texture_webp source where there is one, else `source`: the fallback of textures that
 // also have a KTX2 (KHR_texture_basisu) or other image wavepath cannot decode. Images are
 // decoded here, each once, after checkExtensions.
@@ -23,17 +25,29 @@ public:
   // can decode (only a KTX2 one, say), before any image is decoded.
   TextureTable(const Context& ctx, std::vector<Texture>& textures);
 
-  // The index in `textures` of glTF texture `index`; throws when it or its image or
-  // sampler does not exist, or its image cannot be read or decoded (naming the image file).
-  int add(int index, bool srgb, const std::string& where);
+  // The index in `textures` of a material slot's texture: glTF texture `index` looked up with
+  // TEXCOORD_<texCoord>, through the KHR_texture_transform among `extensions` (whose own
+  // texCoord wins); -1 for a set other than 0 and 1, which the caller warns about. Throws when
+  // the texture or its image or sampler does not exist, its image cannot be read or decoded
+  // (naming the image file), or the transform is malformed.
+  int add(int index, int texCoord, const tinygltf::ExtensionMap& extensions, bool srgb, const std::string& where);
+
+  // The same for a glTF textureInfo (TextureInfo, NormalTextureInfo, ...).
+  template <typename Info>
+  int add(const Info& info, bool srgb, const std::string& where) {
+    return add(info.index, info.texCoord, info.extensions, srgb, where);
+  }
 
 private:
+  using Key = std::tuple<int, bool, int, std::array<float, 6>>;  // texture, sRGB, set, transform
+
+
   const Rgba8Image& decoded(int image, const std::string& where);
 
   const Context& ctx_;
   std::vector<Texture>& textures_;
   std::vector<int> imageOf_;  // per glTF texture: the image it shows
-  std::map<std::pair<int, bool>, int> converted_;
+  std::map<Key, int> converted_;
   std::map<int, Rgba8Image> decoded_;
 };
 

@@ -23,11 +23,16 @@ struct Material {
   // (extras.wavepath.diffuse = "disney"); Lambert: ideal diffuse of albedo baseColor
   // (extras.wavepath.bsdf = "lambert").
   enum class Bsdf { Gltf, GltfDisneyDiffuse, Lambert };
+  // glTF alphaMode: Opaque ignores alpha; Mask cuts the surface out where alpha <
+  // alphaCutoff; Blend lets a ray pass with probability 1 - alpha (shaders/common/alpha.h).
+  enum class AlphaMode { Opaque, Mask, Blend };
 
   std::string name;
   Bsdf bsdf = Bsdf::Gltf;
   glm::vec3 baseColor{1.0f};  // linear RGB base colour
-  float alpha = 1.0f;
+  float alpha = 1.0f;  // baseColorFactor's alpha
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
   float metallic = 1.0f;
   float roughness = 1.0f;     // perceptual; alpha = roughness^2
   float ior = 1.5f;           // KHR_materials_ior
@@ -43,6 +48,7 @@ struct Material {
   int emissiveTexture = -1;           // index into Scene::textures (sRGB), multiplies emission
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
+  bool isAlphaTested() const { return alphaMode != AlphaMode::Opaque; }
 };
 
 // A triangle mesh in object space. All glTF primitives of a mesh are merged into one.
@@ -54,6 +60,7 @@ struct Mesh {
   std::vector<glm::vec3> normals;
   // glTF TEXCOORD_0 per vertex, or empty when no primitive has it; zero where one lacks it.
   std::vector<glm::vec2> uvs;
+  std::vector<glm::vec2> uvs1;  // TEXCOORD_1, the same way
   // glTF COLOR_0 per vertex (linear RGBA), or empty when no primitive has it; white where one lacks it.
   std::vector<glm::vec4> colors;
   // glTF TANGENT per vertex (xyz unit, w the bitangent sign, +-1), or empty when no primitive
@@ -68,7 +75,8 @@ struct Mesh {
   size_t triangleCount() const { return indices.size() / 3; }
 };
 
-// A decoded image with its sampler: RGBA8, rows from the top, r in the low byte.
+// A decoded image with its sampler, as one material slot uses it: RGBA8, rows from the top, r
+// in the low byte, with the slot's texture coordinate set and transform.
 struct Texture {
   enum class Wrap { Repeat, Clamp, Mirror };
 
@@ -79,6 +87,9 @@ struct Texture {
   Wrap wrapT = Wrap::Repeat;
   bool nearest = false;  // magFilter NEAREST; otherwise bilinear (there are no mipmaps)
   bool srgb = false;     // colour data (base colour), decoded to linear when sampled
+  int texCoord = 0;      // TEXCOORD_<texCoord> (0 or 1)
+  // KHR_texture_transform: the coordinates looked up are uvTransform * (u, v, 1).
+  glm::mat3 uvTransform{1.0f};
 };
 
 struct MeshInstance {

@@ -6,7 +6,28 @@
 #include <limits>
 #include <stdexcept>
 
+#include <stb_image_write.h>
+
 namespace wp::samples {
+
+std::vector<float> rotationFromMinusZ(glm::vec3 to) {
+  const glm::vec3 from(0.0f, 0.0f, -1.0f);
+  to = glm::normalize(to);
+  const glm::vec3 axis = glm::cross(from, to);
+  const glm::vec4 q = glm::normalize(glm::vec4(axis, 1.0f + glm::dot(from, to)));
+  return {q.x, q.y, q.z, q.w};
+}
+
+std::vector<uint8_t> encodePng(int width, int height, int channels, const std::vector<uint8_t>& pixels) {
+  std::vector<uint8_t> png;
+  stbi_write_png_to_func(
+      [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<uint8_t>*>(context);
+        out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+      },
+      &png, width, height, channels, pixels.data(), width * channels);
+  return png;
+}
 
 GltfBuilder::GltfBuilder() {
   json = {{"asset", {{"version", "2.0"}, {"generator", "wavepath-make-samples"}}},

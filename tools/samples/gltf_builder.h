@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 namespace wp::samples {
@@ -24,6 +25,13 @@ std::vector<uint8_t> bytesOf(const std::vector<T>& values) {
   if (!bytes.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
   return bytes;
 }
+
+// The rotation (x, y, z, w) that turns -Z, where glTF lamps and cameras point, to `to`
+// (not -Z itself, nor +Z).
+std::vector<float> rotationFromMinusZ(glm::vec3 to);
+
+// `pixels` (rows from the top, `channels` bytes each) encoded as PNG.
+std::vector<uint8_t> encodePng(int width, int height, int channels, const std::vector<uint8_t>& pixels);
 
 // Buffer 0 is the binary data, written as <name>.bin beside <name>.gltf. Everything else
 // (meshes, materials, nodes, ...) is added to `json` directly.

@@ -14,7 +14,6 @@
 #include <draco/mesh/mesh.h>
 #include <glm/glm.hpp>
 #include <meshoptimizer.h>
-#include <stb_image_write.h>
 
 #include "samples/gltf_builder.h"
 
@@ -66,15 +65,6 @@ std::vector<float> flatten(const std::vector<glm::vec2>& v) {
   return out;
 }
 
-// The rotation (x, y, z, w) that turns -Z, where glTF lamps and cameras point, to `to`.
-std::vector<float> rotationFromMinusZ(glm::vec3 to) {
-  const glm::vec3 from(0.0f, 0.0f, -1.0f);
-  to = glm::normalize(to);
-  const glm::vec3 axis = glm::cross(from, to);
-  const glm::vec4 q = glm::normalize(glm::vec4(axis, 1.0f + glm::dot(from, to)));
-  return {q.x, q.y, q.z, q.w};
-}
-
 // A camera at `eye` looking at `target` (up +y), a directional lamp shining along `light`
 // (in lux, KHR_lights_punctual), and the scene of them and the `meshNodes`.
 void addStage(GltfBuilder& file, glm::vec3 eye, glm::vec3 target, glm::vec3 light, float lux,
@@ -111,14 +101,7 @@ std::vector<uint8_t> checkerPng() {
       rgb.insert(rgb.end(), dark ? std::initializer_list<uint8_t>{40, 60, 160} : std::initializer_list<uint8_t>{230, 200, 90});
     }
   }
-  std::vector<uint8_t> png;
-  stbi_write_png_to_func(
-      [](void* context, void* data, int size) {
-        auto* out = static_cast<std::vector<uint8_t>*>(context);
-        out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
-      },
-      &png, 8, 8, 3, rgb.data(), 8 * 3);
-  return png;
+  return encodePng(8, 8, 3, rgb);
 }
 
 // A Lambertian material with the checker as base colour texture, sampled NEAREST.
@@ -347,14 +330,7 @@ std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir) {
     const uint8_t v = (i % kTexels + i / kTexels) % 2 == 0 ? 230 : 20;
     rgb.insert(rgb.end(), {v, v, v});
   }
-  std::vector<uint8_t> png;
-  stbi_write_png_to_func(
-      [](void* context, void* data, int size) {
-        auto* out = static_cast<std::vector<uint8_t>*>(context);
-        out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
-      },
-      &png, kTexels, kTexels, 3, rgb.data(), kTexels * 3);
-  file.json["images"] = {{{"bufferView", file.addView(png)}, {"mimeType", "image/png"}}};
+  file.json["images"] = {{{"bufferView", file.addView(encodePng(kTexels, kTexels, 3, rgb))}, {"mimeType", "image/png"}}};
   file.json["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
   file.json["textures"] = {{{"source", 0}, {"sampler", 0}}};
   file.json["materials"] = {{{"name", "checker"},
@@ -379,6 +355,9 @@ std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir) {
 
 void writeAllSamples(const std::filesystem::path& dir) {
   writeMinificationPlane(dir);
+  writeAlphaCoverage(dir);
+  writeAlphaShadow(dir);
+  writeTextureTransform(dir);
   for (Compression c : {Compression::None, Compression::Draco, Compression::Meshopt}) writeCompressedSphere(dir, c);
   writeSparseGrid(dir, true);
   writeSparseGrid(dir, false);

@@ -4,6 +4,8 @@
 
 #include <filesystem>
 
+#include <glm/glm.hpp>
+
 namespace wp::samples {
 
 enum class Compression { None, Draco, Meshopt };
@@ -26,6 +28,38 @@ std::filesystem::path writeSparseGrid(const std::filesystem::path& dir, bool spa
 // so the texture is minified far beyond a texel per pixel: it shows what wavepath does
 // instead of mipmapping (docs/scenes.md). Writes <dir>/minification.gltf and .bin.
 std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir);
+
+// glTF alphaMode (samples/surface_samples.cpp). An orthographic camera looks down -z at a
+// black quad of alphaMode MASK (x in [-2, 0], y in [-1, 1]) whose base colour texture is a
+// 4x4 checker of alpha 1 and 0 (sampled NEAREST, texel (0, 0) opaque), and at a black pane
+// of alphaMode BLEND (x in [0, 2]) whose alpha is 0.5 in baseColorFactor times 0.5 in
+// COLOR_0; behind both, an emitter of radiance 1 fills the view. 2:1, so a 64x32 image has a
+// texel per 8x8 pixels. Writes <dir>/alpha-coverage.gltf and .bin.
+std::filesystem::path writeAlphaCoverage(const std::filesystem::path& dir);
+
+// A sun shining along (1, -1, 0) onto a white floor (y = 0) through a black BLEND pane of
+// alpha 0.25 at y = 1 over x < 0, which shades the floor at x in [-1, 1]; an orthographic
+// camera looks straight down at x in [0, 2], z in [-0.5, 0.5] (2:1, past the pane's edge):
+// the shadowed half should receive 0.75 of the lit half's light. Writes
+// <dir>/alpha-shadow.gltf and .bin.
+std::filesystem::path writeAlphaShadow(const std::filesystem::path& dir);
+
+// KHR_texture_transform and texCoord, like Khronos' TextureTransformTest. The camera of
+// writeAlphaCoverage looks at two quads that emit a 4x4 texture (transformTestTexel, sRGB,
+// NEAREST, REPEAT) with radiance equal to its texels: on the left (x in [-2, 0]) on
+// TEXCOORD_0 = ((x + 2) / 2, (1 - y) / 2) through offset kTransformOffset, rotation
+// kTransformRotation and scale kTransformScale; on the right (x in [0, 2]) with texCoord 1,
+// TEXCOORD_1 = (x / 2, (1 - y) / 2) (TEXCOORD_0 is 0.1 everywhere) through offset
+// kSecondSetOffset. Writes <dir>/texture-transform.gltf and .bin.
+std::filesystem::path writeTextureTransform(const std::filesystem::path& dir);
+inline constexpr glm::vec2 kTransformOffset{0.25f, 0.5f};
+inline constexpr float kTransformRotation = 0.3f;
+inline constexpr glm::vec2 kTransformScale{1.5f, 2.0f};
+inline constexpr glm::vec2 kSecondSetOffset{0.5f, 0.25f};
+// Texel (x, y) of its texture, sRGB-encoded, a different colour each.
+inline glm::u8vec3 transformTestTexel(int x, int y) {
+  return glm::u8vec3(30 + 60 * x, 30 + 60 * y, 200 - 40 * x);
+}
 
 // Writes every sample into `dir`.
 void writeAllSamples(const std::filesystem::path& dir);
