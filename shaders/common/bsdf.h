@@ -19,7 +19,7 @@ WP_FN SurfaceMaterial surfaceMaterialOf(GpuMaterial m) {
   s.ior = m.surface.z;
   s.transmission = m.surface.w;
   s.disneyDiffuse = m.info.x == WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
-  return s;
+  return withDefaultExtensions(s);
 }
 
 // Lambert, two-sided: albedo / pi into wo's hemisphere, sampled by the cosine.

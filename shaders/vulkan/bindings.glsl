@@ -24,7 +24,7 @@ layout(binding = WP_BINDING_RAYS_READ) uniform usamplerBuffer rayTexels;
 layout(binding = WP_BINDING_HITS_READ) uniform usamplerBuffer hitTexels;
 layout(binding = WP_BINDING_SHADOW_RAYS_READ) uniform usamplerBuffer shadowRayTexels;
 layout(binding = WP_BINDING_BSDF_TABLES) uniform usamplerBuffer bsdfTableTexels;
-#define WP_GGX_ALBEDO(i) uintBitsToFloat(texelFetch(bsdfTableTexels, int(i)).x)
+#define WP_BSDF_TABLE(i) uintBitsToFloat(texelFetch(bsdfTableTexels, int(i)).x)
 
 layout(std430, binding = WP_BINDING_RAYS) writeonly buffer Rays { PathRay rays[]; };
 layout(std430, binding = WP_BINDING_HITS) writeonly buffer Hits { HitRecord hits[]; };

@@ -55,7 +55,7 @@ private:
   // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL, then WP_BINDING_TRIANGLE_SHADING ..
   // WP_BINDING_TEXELS.
   std::array<VulkanBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
-  VulkanBuffer bsdfTables_;  // gpu::kGgxAlbedo (energy_compensation.h)
+  VulkanBuffer bsdfTables_;  // gpu::kBsdfTables (energy_compensation.h)
   VulkanBuffer params_;
   VulkanBuffer rays_;
   VulkanBuffer hits_;
