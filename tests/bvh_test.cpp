@@ -14,6 +14,7 @@
 
 #include "bvh/bvh_builder.h"
 #include "bvh/bvh_refit.h"
+#include "bvh/device_buffers.h"
 #include "bvh/gpu_scene.h"
 #include "bvh/scene_update.h"
 #include "bvh/sweep_builder.h"
@@ -334,13 +335,13 @@ TEST(Intersect, PlaneAndSlabs) {
 // ---- packed scenes: traversal against brute force ---------------------------------------
 
 Hit traceClosest(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
-  return wp::gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                               g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
+  return wp::gpu::traceClosest(wp::sceneBuffers(g), g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax,
+                               0.0f);
 }
 
 bool traceAny(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
-  return wp::gpu::traceAny(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(),
-                           g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax, 0.0f);
+  return wp::gpu::traceAny(wp::sceneBuffers(g), g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax,
+                           0.0f);
 }
 
 // Every plane, every instance, every triangle, with the same object-space rays as traverse.h.
@@ -355,8 +356,8 @@ Hit bruteForce(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
   }
   for (uint32_t i = 0; i < g.instances.size(); ++i) {
     const wp::gpu::GpuInstance& inst = g.instances[i];
-    glm::vec3 oo = wp::gpu::instanceRayOrigin(inst, o);
-    glm::vec3 od = wp::gpu::instanceRayDirection(inst, d);
+    glm::vec3 oo = wp::gpu::pointToObject(inst, o);
+    glm::vec3 od = wp::gpu::directionToObject(inst, d);
     if (inst.info.x == WP_INSTANCE_SPHERE) {
       float t = wp::gpu::intersectUnitSphere(oo, od, tMax);
       if (t < best.t) {
@@ -915,7 +916,9 @@ TEST(SceneUpdater, MatchesPackSceneOfThePose) {
       }
       EXPECT_EQ(got.boundsMin, want.boundsMin);
       EXPECT_EQ(got.boundsMax, want.boundsMax);
-      EXPECT_EQ(got.sky.transform, want.sky.transform);
+      EXPECT_EQ(got.sky.intensity, want.sky.intensity);
+      EXPECT_EQ(got.sky.rotation, want.sky.rotation);
+      EXPECT_EQ(got.sky.selectionProbability, want.sky.selectionProbability);
       EXPECT_EQ(got.triangles.size(), want.triangles.size());
       for (size_t m = 1; m < got.meshes.size(); ++m) {  // static meshes keep their triangles
         EXPECT_TRUE(std::equal(got.triangles.begin() + got.meshes[m].firstTriangle,
@@ -999,7 +1002,7 @@ TEST(SceneUpdater, RebuildsOnceSahGrowthPassesTheThreshold) {
 }
 
 // The SAH cost of refitted trees against fresh builds over 100 frames of the deforming grid:
-// refitting only, and rebuilding past each candidate threshold (printed for README.md, where
+// refitting only, and rebuilding past each candidate threshold (printed for docs/animation.md, where
 // kRebuildSahRatio is chosen from it).
 TEST(Refit, SahCostOfRefitVersusRebuildOver100Frames) {
   constexpr int kFrames = 100;

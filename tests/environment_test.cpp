@@ -44,15 +44,16 @@ struct Sky {
   wp::EnvironmentMap map;
   gpu::GpuEnvironment env;
 
-  glm::vec3 radiance(glm::vec3 d) const {
-    return gpu::environmentRadiance(map.radiance.data(), env, d);
+  gpu::DeviceBuffers buffers() const {
+    gpu::DeviceBuffers b{};
+    b.skyRadiance = map.radiance.data();
+    b.skyMarginal = map.marginalCdf.data();
+    b.skyConditional = map.conditionalCdf.data();
+    return b;
   }
-  float pdf(glm::vec3 d) const {
-    return gpu::environmentPdf(map.marginalCdf.data(), map.conditionalCdf.data(), env, d);
-  }
-  gpu::LightSample sample(glm::vec2 u) const {
-    return gpu::sampleEnvironment(map.radiance.data(), map.marginalCdf.data(), map.conditionalCdf.data(), env, u);
-  }
+  glm::vec3 radiance(glm::vec3 d) const { return gpu::environmentRadiance(buffers(), env, d); }
+  float pdf(glm::vec3 d) const { return gpu::environmentPdf(buffers(), env, d); }
+  gpu::LightSample sample(glm::vec2 u) const { return gpu::sampleEnvironment(buffers(), env, u); }
   glm::vec3 texelCentre(uint32_t x, uint32_t y) const {
     return gpu::environmentDirection(env, {(x + 0.5f) / map.width, (y + 0.5f) / map.height});
   }
@@ -122,7 +123,7 @@ TEST(EnvironmentLookup, EvalMatchesTheTexel) {
   for (const Sky& sky : {gradientSky(), sunSky(), rotatedSky()})
     for (uint32_t y = 0; y < sky.map.height; ++y)
       for (uint32_t x = 0; x < sky.map.width; ++x) {
-        glm::vec3 expected = glm::vec3(sky.map.radiance[y * sky.map.width + x]) * sky.env.transform.x;
+        glm::vec3 expected = glm::vec3(sky.map.radiance[y * sky.map.width + x]) * sky.env.intensity;
         ASSERT_EQ(sky.radiance(sky.texelCentre(x, y)), expected) << x << " " << y;
       }
 }
@@ -180,8 +181,7 @@ TEST(EnvironmentSampling, DensityFollowsLuminanceTimesSinTheta) {
     }
   for (uint32_t y = 0; y < 32; ++y)
     for (uint32_t x = 0; x < 64; ++x) {
-      double uvPdf =
-          gpu::environmentUvPdf(sky.map.marginalCdf.data(), sky.map.conditionalCdf.data(), sky.env, y * 64 + x);
+      double uvPdf = gpu::environmentUvPdf(sky.buffers(), sky.env, y * 64 + x);
       // Float CDFs near 1 resolve probabilities to ~1e-7 absolute.
       ASSERT_NEAR(uvPdf, weight[y * 64 + x] / mean, 1e-4 * weight[y * 64 + x] / mean + 2e-4) << x << " " << y;
     }
@@ -347,9 +347,11 @@ TEST_F(EnvironmentLoadTest, ErrorsAreOneLineNamingTheFile) {
   std::ofstream(textExr) << "this is not an image either\n";
   fs::path png = dir / "sky.png";
   std::ofstream(png) << "whatever";
-  // A Radiance header stb_image does not accept (XYZ instead of RGB primaries).
+  // A Radiance header wavepath does not accept (XYZ instead of RGB primaries).
   fs::path xyz = dir / "xyz.hdr";
   std::ofstream(xyz) << "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 4 +X 4\n";
+  fs::path folder = dir / "folder.hdr";
+  fs::create_directories(folder);
   fs::path nanExr = dir / "nan.exr";
   wp::RadianceImage image;
   image.width = 2;
@@ -363,8 +365,8 @@ TEST_F(EnvironmentLoadTest, ErrorsAreOneLineNamingTheFile) {
   };
   for (const Case& c : {Case{missing, "no such file"}, Case{text, "not a Radiance HDR file"},
                         Case{textExr, "not an OpenEXR file"}, Case{png, "unsupported format '.png'"},
-                        Case{xyz, "cannot be read"}, Case{nanExr, "texel (1, 0) is not a finite number"},
-                        Case{dir, "not a regular file"}}) {
+                        Case{xyz, "not 32-bit_rle_rgbe"}, Case{nanExr, "texel (1, 0) is not a finite number"},
+                        Case{folder, "is a directory"}}) {
     std::string message = loadError(c.path);
     EXPECT_NE(message.find(c.path.string()), std::string::npos) << c.path << ": " << message;
     EXPECT_NE(message.find(c.says), std::string::npos) << message;

@@ -100,14 +100,6 @@ void writeBytes(const fs::path& file, const std::string& bytes) {
   std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
 }
 
-// The last line of stderr is the one error line, and the only line.
-void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code) {
-  EXPECT_EQ(r.exitCode, code) << r.err;
-  EXPECT_EQ(r.err.rfind("wavepath: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line: " << r.err;
-}
-
 TEST_P(Farm, RenderKilledWithSigkillResumesBitIdentical) {
   RadianceImage uninterrupted = render("reference.exr");
   RunResult killed = interruptedRender(SIGKILL, std::chrono::milliseconds(150));

@@ -1,7 +1,9 @@
 // Tests of PNG/EXR output and input, atomic writes, and the sRGB encoding in tonemap.h.
 #include <gtest/gtest.h>
 #include <stb_image.h>
+#include <stb_image_write.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,6 +14,7 @@
 
 #include "core/error.h"
 #include "image/image_io.h"
+#include "image/texture_decoder.h"
 #include "shaders/common/tonemap.h"
 
 namespace fs = std::filesystem;
@@ -202,10 +205,137 @@ TEST_F(ImageIoTest, FailedWriteKeepsOldFileAndRemovesTemporary) {
   EXPECT_EQ(listing(), std::vector<std::string>{"frame.exr"});
 }
 
+// Ctrl-C or kill while the image is being written used to leave a hidden .NAME.tmpPID_N of
+// several MB. The write now finishes (and renames) before the signal takes effect.
+TEST_F(ImageIoTest, ASignalDuringTheWriteLeavesNoTemporaryFile) {
+  const fs::path path = dir / "big.exr";
+  const wp::RadianceImage image = makeImage(1024, 1024, true);  // ~24 MB of barely compressible floats
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    wp::writeImage(path, image);
+    ::_exit(0);
+  }
+  // Signal the writer as soon as its temporary file exists, that is, mid-write.
+  bool sawTemporary = false;
+  int status = 0;
+  while (!sawTemporary && ::waitpid(child, &status, WNOHANG) == 0) {
+    for (const std::string& name : listing()) sawTemporary = sawTemporary || name.rfind(".big.exr.tmp", 0) == 0;
+    if (sawTemporary) {
+      ::kill(child, SIGINT);
+      ::waitpid(child, &status, 0);
+    }
+  }
+  ASSERT_TRUE(sawTemporary) << "the write ended before it was seen; write a larger image";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "the signal must still end the process";
+  EXPECT_EQ(listing(), std::vector<std::string>{"big.exr"});
+  EXPECT_EQ(wp::readExr(path).width, 1024u);
+}
+
 TEST_F(ImageIoTest, ReadingMissingOrNonExrFileThrows) {
   EXPECT_THROW(wp::readExr(dir / "none.exr"), wp::Error);
   wp::writeImage(dir / "image.png", makeImage(2, 2, false));
   EXPECT_THROW(wp::readExr(dir / "image.png"), wp::Error);
+}
+
+// --- textures: PNG and JPEG through libpng and libjpeg-turbo ---
+
+std::vector<uint8_t> encodeWithStb(bool jpeg, int width, int height, int channels, const std::vector<uint8_t>& pixels) {
+  std::vector<uint8_t> out;
+  auto append = [](void* context, void* data, int size) {
+    auto* bytes = static_cast<std::vector<uint8_t>*>(context);
+    bytes->insert(bytes->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+  };
+  if (jpeg) {
+    stbi_write_jpg_to_func(append, &out, width, height, channels, pixels.data(), 95);
+  } else {
+    stbi_write_png_to_func(append, &out, width, height, channels, pixels.data(), width * channels);
+  }
+  return out;
+}
+
+std::string decodeError(const std::vector<uint8_t>& bytes) {
+  try {
+    wp::decodeTexture(bytes.data(), bytes.size());
+  } catch (const wp::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TextureDecoder, PngOfEveryChannelCountBecomesRgba8Exactly) {
+  const int width = 5, height = 3;
+  for (int channels = 1; channels <= 4; ++channels) {
+    SCOPED_TRACE(channels);
+    std::vector<uint8_t> pixels;
+    for (int i = 0; i < width * height * channels; ++i) pixels.push_back(uint8_t(i * 37 + 11));
+    const std::vector<uint8_t> png = encodeWithStb(false, width, height, channels, pixels);
+    const wp::Rgba8Image image = wp::decodeTexture(png.data(), png.size());
+    ASSERT_EQ(image.width, uint32_t(width));
+    ASSERT_EQ(image.height, uint32_t(height));
+    for (int p = 0; p < width * height; ++p) {
+      const uint8_t* in = &pixels[size_t(p) * channels];
+      const bool grey = channels <= 2;
+      const uint8_t expected[4] = {in[0], grey ? in[0] : in[1], grey ? in[0] : in[2],
+                                   channels == 2 ? in[1] : channels == 4 ? in[3] : uint8_t(255)};
+      for (int c = 0; c < 4; ++c) EXPECT_EQ(image.rgba[size_t(p) * 4 + c], expected[c]) << "pixel " << p << " " << c;
+    }
+  }
+}
+
+TEST(TextureDecoder, JpegDecodesCloseToWhatWasEncoded) {
+  const int width = 16, height = 16;
+  std::vector<uint8_t> pixels;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) pixels.insert(pixels.end(), {uint8_t(16 * x), uint8_t(16 * y), 128});
+  const std::vector<uint8_t> jpeg = encodeWithStb(true, width, height, 3, pixels);
+  const wp::Rgba8Image image = wp::decodeTexture(jpeg.data(), jpeg.size());
+  ASSERT_EQ(image.width, uint32_t(width));
+  for (int p = 0; p < width * height; ++p) {
+    // Quality 95 with chroma subsampling: a smooth ramp keeps within a few codes.
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(image.rgba[size_t(p) * 4 + c], pixels[size_t(p) * 3 + c], 12) << p;
+    EXPECT_EQ(image.rgba[size_t(p) * 4 + 3], 255);
+  }
+}
+
+TEST(TextureDecoder, AJpegHuffmanTableOfMoreThan256CodesIsAnError) {
+  // stb_image sized its Huffman tables for 256 codes and never checked the counts a table
+  // declares: fuzz_texture found a write past them (UBSan: index 257 out of bounds). Here the
+  // first table's 16 counts say 16 * 20 = 320 codes.
+  std::vector<uint8_t> pixels(8 * 8 * 3, 100);
+  std::vector<uint8_t> jpeg = encodeWithStb(true, 8, 8, 3, pixels);
+  size_t dht = 0;
+  while (dht + 1 < jpeg.size() && !(jpeg[dht] == 0xff && jpeg[dht + 1] == 0xc4)) ++dht;
+  ASSERT_LT(dht + 21, jpeg.size()) << "no DHT segment";
+  for (int i = 0; i < 16; ++i) jpeg[dht + 5 + i] = 20;  // after FF C4, the length and the class/id byte
+  const std::string message = decodeError(jpeg);
+  EXPECT_EQ(message.rfind("JPEG: ", 0), 0u) << message;
+}
+
+TEST(TextureDecoder, DamagedOrOversizedOrOtherFilesAreErrors) {
+  std::vector<uint8_t> pixels(6 * 4 * 3, 50);
+  const std::vector<uint8_t> png = encodeWithStb(false, 6, 4, 3, pixels);
+  const std::vector<uint8_t> jpeg = encodeWithStb(true, 6, 4, 3, pixels);
+  for (size_t cut : {size_t(8), size_t(20), png.size() / 2, png.size() - 4}) {
+    EXPECT_EQ(decodeError({png.begin(), png.begin() + long(cut)}).rfind("PNG: ", 0), 0u) << cut;
+  }
+  for (size_t cut : {size_t(3), size_t(40), jpeg.size() / 2, jpeg.size() - 2}) {
+    EXPECT_EQ(decodeError({jpeg.begin(), jpeg.begin() + long(cut)}).rfind("JPEG: ", 0), 0u) << cut;
+  }
+  // A PNG whose header declares 16000x16000 pixels, with a valid CRC, in under 100 bytes.
+  std::vector<uint8_t> bomb = png;
+  const uint8_t size[8] = {0, 0, 0x3e, 0x80, 0, 0, 0x3e, 0x80};
+  std::copy(size, size + 8, bomb.begin() + 16);  // IHDR's width and height
+  uint32_t crc = 0xffffffffu;  // CRC-32 of the chunk type and data, as PNG stores it
+  for (size_t i = 12; i < 29; ++i) {
+    crc ^= bomb[i];
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  crc = ~crc;
+  for (int i = 0; i < 4; ++i) bomb[29 + i] = uint8_t(crc >> (24 - 8 * i));
+  EXPECT_NE(decodeError(bomb).find("declares 16000x16000 pixels, more than its"), std::string::npos)
+      << decodeError(bomb);
+  EXPECT_EQ(decodeError({'G', 'I', 'F', '8', '9', 'a', 0, 0}), "not a PNG, JPEG or WebP image");
 }
 
 TEST(Tonemap, LinearToSrgbMatchesTheFormula) {

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "bvh/device_buffers.h"
 #include "bvh/gpu_scene.h"
 #include "bvh/instance_baking.h"
 #include "shaders/common/surface.h"
@@ -88,8 +89,7 @@ Mesh randomTangentMesh(std::mt19937& rng, int triangles) {
 // The normal-mapping frame at a hit, as normalMapped (integrator.h) orthogonalizes it.
 // The closest hit of a ray in `g` (no planes, at shutter time 0).
 gpu::Hit traceClosest(const GpuScene& g, glm::vec3 origin, glm::vec3 direction) {
-  return gpu::traceClosest(g.nodes.data(), g.triangles.data(), g.instances.data(), g.planes.data(), g.tlasRoot, 0u,
-                           origin, direction, WP_FLT_MAX, 0.0f);
+  return gpu::traceClosest(sceneBuffers(g), g.tlasRoot, 0u, origin, direction, WP_FLT_MAX, 0.0f);
 }
 
 struct TangentFrame {
@@ -97,8 +97,7 @@ struct TangentFrame {
 };
 
 TangentFrame frameAt(const GpuScene& g, const gpu::Hit& hit, glm::vec3 position) {
-  gpu::SurfaceHit s = gpu::surfaceAt(g.triangles.data(), g.instances.data(), g.planes.data(),
-                                     g.triangleShading.data(), hit.instance, hit.primitive, position, 0.0f);
+  gpu::SurfaceHit s = gpu::surfaceAt(sceneBuffers(g), hit.instance, hit.primitive, position, 0.0f);
   glm::vec3 n = s.shadingNormal;
   glm::vec3 t = glm::normalize(s.tangent - n * glm::dot(n, s.tangent));
   glm::vec3 b = s.bitangent - n * glm::dot(n, s.bitangent) - t * glm::dot(t, s.bitangent);

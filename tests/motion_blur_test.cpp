@@ -204,7 +204,7 @@ TEST_P(MotionBlur, EqualsTheAverageOfRendersAtManyInstants) {
 }
 
 // Scenes where nothing moves run the stages built without motion blur, which would otherwise
-// cost them time (README, Motion blur); the test above checks that moving ones get the motion
+// cost them time (docs/motion-blur.md); the test above checks that moving ones get the motion
 // build (with the still one they would render as at shutter open). Switching builds must
 // leave every buffer bound to the switched-in kernels: a still render after a moving one
 // equals, bit for bit, the same render before it.

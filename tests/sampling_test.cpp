@@ -171,7 +171,7 @@ TEST_P(LightTriangle, SamplesFollowTheRayCastPdf) {
   for (int i = 0; i < kSamples; ++i) {
     // No emissive texture, so no shading records or textures to pass.
     gpu::LightSample s =
-        gpu::sampleLightTriangle(nullptr, nullptr, nullptr, light, glm::vec3(c.position), next2(random));
+        gpu::sampleLightTriangle(gpu::DeviceBuffers{}, light, glm::vec3(c.position), next2(random));
     glm::dvec3 d = glm::normalize(glm::dvec3(s.direction));
     double reference = trianglePdf(c, c.position, d, 1e-4);
     if (reference == 0.0 || !(s.pdf > 0.0f)) {
@@ -224,6 +224,14 @@ INSTANTIATE_TEST_SUITE_P(Shapes, LightTriangle, ::testing::ValuesIn(kTriangleCas
                          [](const auto& info) { return std::string(info.param.name); });
 
 // ---- Light selection -----------------------------------------------------------------------
+
+// The light table as the buffers lights.h reads (the other buffers stay null: these lights
+// have no emissive texture).
+gpu::DeviceBuffers lightBuffers(const std::vector<gpu::GpuLight>& lights) {
+  gpu::DeviceBuffers buffers{};
+  buffers.lights = lights.data();
+  return buffers;
+}
 
 // A Vose alias table in GpuLight's fields (edge1.w: probability, edge2.w: threshold, info.x:
 // alias), written here independently of the scene packer that builds the real one.
@@ -280,7 +288,7 @@ TEST_P(AliasTable, SelectLightFollowsTheProbabilities) {
   std::vector<double> observed(n, 0.0), expected;
   TestRandom random(3);
   for (int i = 0; i < kSamples; ++i) {
-    uint32_t index = gpu::selectLight(lights.data(), n, random.next());
+    uint32_t index = gpu::selectLight(lightBuffers(lights), n, random.next());
     ASSERT_LT(index, n);
     observed[index] += 1.0;
   }
@@ -313,9 +321,9 @@ TEST(SampleLight, MultipliesSelectionAndTriangleDensities) {
   for (int i = 0; i < 1000; ++i) {
     glm::vec3 u(random.next(), random.next(), random.next());
     gpu::LightSample s =
-        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_POWER, position, 0.0f, u);
-    const gpu::GpuLight& chosen = lights[gpu::selectLight(lights.data(), 3, u.x)];
-    gpu::LightSample alone = gpu::sampleLightTriangle(nullptr, nullptr, nullptr, chosen, position, glm::vec2(u.y, u.z));
+        gpu::sampleLight(lightBuffers(lights), 3, WP_LIGHT_SELECTION_POWER, position, 0.0f, u);
+    const gpu::GpuLight& chosen = lights[gpu::selectLight(lightBuffers(lights), 3, u.x)];
+    gpu::LightSample alone = gpu::sampleLightTriangle(gpu::DeviceBuffers{}, chosen, position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
     ASSERT_FLOAT_EQ(s.pdf, alone.pdf * chosen.edge1.w);
   }
@@ -351,7 +359,7 @@ TEST(SampleLight, SolidAngleSelectionFollowsTheWeights) {
   lights[2].info.y = WP_LIGHT_TRIANGLE | WP_LIGHT_DOUBLE_SIDED;  // LargeAndClose: lit from below as well
   glm::vec3 position(0.1f, 0.0f, 0.2f);
   std::vector<double> expected;
-  double sum = gpu::solidAngleWeightSum(lights.data(), 3, position, 0.0f);
+  double sum = gpu::solidAngleWeightSum(lightBuffers(lights), 3, position, 0.0f);
   const int kCount = 100000;
   for (const gpu::GpuLight& light : lights) expected.push_back(kCount * gpu::solidAngleWeight(light, position, 0.0f) / sum);
   EXPECT_EQ(expected[0], 0.0);  // "Facing" shows this point its back: cross(e1, e2) points away
@@ -359,16 +367,16 @@ TEST(SampleLight, SolidAngleSelectionFollowsTheWeights) {
   TestRandom random(5);
   for (int i = 0; i < kCount; ++i) {
     glm::vec3 u(random.next(), random.next(), random.next());
-    gpu::LightChoice choice = gpu::selectLightBySolidAngle(lights.data(), 3, position, 0.0f, u.x);
+    gpu::LightChoice choice = gpu::selectLightBySolidAngle(lightBuffers(lights), 3, position, 0.0f, u.x);
     ASSERT_LT(choice.index, 3u);
     observed[choice.index] += 1.0;
-    float probability = gpu::lightSelectionProbability(lights.data(), 3, WP_LIGHT_SELECTION_SOLID_ANGLE,
+    float probability = gpu::lightSelectionProbability(lightBuffers(lights), 3, WP_LIGHT_SELECTION_SOLID_ANGLE,
                                                        lights[choice.index], position, 0.0f);
     ASSERT_FLOAT_EQ(choice.probability, probability);
     gpu::LightSample s =
-        gpu::sampleLight(lights.data(), nullptr, nullptr, nullptr, 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, 0.0f, u);
+        gpu::sampleLight(lightBuffers(lights), 3, WP_LIGHT_SELECTION_SOLID_ANGLE, position, 0.0f, u);
     gpu::LightSample alone =
-        gpu::sampleLightTriangle(nullptr, nullptr, nullptr, lights[choice.index], position, glm::vec2(u.y, u.z));
+        gpu::sampleLightTriangle(gpu::DeviceBuffers{}, lights[choice.index], position, glm::vec2(u.y, u.z));
     ASSERT_EQ(s.direction, alone.direction);
     ASSERT_FLOAT_EQ(s.pdf, alone.pdf * probability);
   }

@@ -2,8 +2,8 @@
 // under the constant white sky of an emitter-less scene has radiance equal to its albedo,
 // so every pixel shows the base colour texture as sampled there: the test checks that a
 // known 4x4 texture lands at the right place, with nearest and bilinear filtering, each
-// wrap mode and the sRGB decode, and that COLOR_0 multiplies it; as an emissive texture of
-// a black emitter it shows the same way. A normal texture tilts the shading normal as the
+// wrap mode and the sRGB decode (from a PNG, and once from a lossless WebP), and that COLOR_0
+// multiplies it; as an emissive texture of a black emitter it shows the same way. A normal texture tilts the shading normal as the
 // equivalent vertex normals do, in the file's TANGENT frame where there is one; an emissive
 // texture on a lamp lights the same in every sampling mode.
 #include <gtest/gtest.h>
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <stb_image_write.h>
+#include <webp/encode.h>
 
 #include "image/image_io.h"
 #include "support/gltf_writer.h"
@@ -36,6 +37,7 @@ struct TextureCase {
   int magFilter;  // glTF NEAREST 9728 or LINEAR 9729
   bool vertexColor = false;  // COLOR_0 kVertexColor at every vertex (UNSIGNED_BYTE, normalized)
   bool emissive = false;     // the texture is the emissiveTexture of a black emitter instead
+  bool webp = false;  // the image is a lossless WebP (EXT_texture_webp, required) instead of a PNG
 };
 
 // Exactly representable in 8 bits, so the expected product is exact too.
@@ -90,6 +92,10 @@ std::filesystem::path writeScene(const TextureCase& c, const std::filesystem::pa
     }
   }
   stbi_write_png((dir / "checker.png").string().c_str(), kTexels, kTexels, 3, rgb.data(), kTexels * 3);
+  uint8_t* webp = nullptr;
+  const size_t webpSize = WebPEncodeLosslessRGB(rgb.data(), kTexels, kTexels, kTexels * 3, &webp);
+  std::ofstream(dir / "checker.webp", std::ios::binary).write(reinterpret_cast<const char*>(webp), std::streamsize(webpSize));
+  WebPFree(webp);
   std::vector<float> data = {-1, 0, -1, -0.5f, -0.5f, -1, 0, 1, -0.5f, 1.5f,
                              1,  0, 1,  1.5f,  1.5f,  1,  0, -1, 1.5f, -0.5f};
   std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
@@ -118,8 +124,11 @@ std::filesystem::path writeScene(const TextureCase& c, const std::filesystem::pa
                  "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0})"
                                             : R"("pbrMetallicRoughness": {"baseColorTexture": {"index": 0}})") +
                      R"(, "doubleSided": true, "extras": {"wavepath": {"bsdf": "lambert"}}}],
-  "textures": [{"source": 0, "sampler": 0}],
-  "images": [{"uri": "checker.png"}],
+  "textures": [{)" + std::string(c.webp ? R"("extensions": {"EXT_texture_webp": {"source": 0}})" : R"("source": 0)") +
+                     R"(, "sampler": 0}],
+  "images": [{"uri": "checker.)" + std::string(c.webp ? "webp" : "png") + R"("}],)" +
+                     (c.webp ? R"("extensionsUsed": ["EXT_texture_webp"], "extensionsRequired": ["EXT_texture_webp"],)" : "") +
+                     R"(
   "samplers": [{"magFilter": )" + std::to_string(c.magFilter) +
                      R"(, "wrapS": )" + std::to_string(c.wrap) + R"(, "wrapT": )" + std::to_string(c.wrap) + "}]}";
   std::ofstream(dir / "quad.gltf") << json;
@@ -308,6 +317,7 @@ const TextureCase kCases[] = {
     {"NearestRepeat", 10497, 9728}, {"NearestClamp", 33071, 9728}, {"NearestMirror", 33648, 9728},
     {"LinearRepeat", 10497, 9729},  {"LinearClamp", 33071, 9729}, {"NearestRepeatVertexColor", 10497, 9728, true},
     {"NearestMirrorEmissive", 33648, 9728, false, true}, {"LinearRepeatEmissive", 10497, 9729, false, true},
+    {"NearestRepeatWebp", 10497, 9728, false, false, true},
 };
 
 std::string caseName(const ::testing::TestParamInfo<std::tuple<std::string, TextureCase>>& info) {

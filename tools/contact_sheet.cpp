@@ -1,4 +1,4 @@
-// wavepath-contact-sheet: lays PNG frames of an image sequence out in a grid, for the README.
+// wavepath-contact-sheet: lays PNG frames of an image sequence out in a grid, for the docs.
 #include <algorithm>
 #include <cstdio>
 #include <exception>

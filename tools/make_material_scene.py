@@ -2,7 +2,7 @@
 """Writes assets/materials.gltf: rows of analytic spheres showing wavepath's materials.
 
 Run by hand (python3 tools/make_material_scene.py [--plastics] [output.gltf]); the output is
-committed. --plastics writes the variant of the README's Fresnel-blending figure instead:
+committed. --plastics writes the variant of docs/materials.md's Fresnel-blending figure instead:
 every row plastic (red, white, blue) at increasing roughness. Python 3 standard library only.
 
 Back row: gold, roughness increasing to the right; middle row: copper, the same; front row:

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
 """Writes assets/sky-spheres.gltf: three Lambertian spheres on a ground plane, lit by nothing
-but a sky (render it with --sky assets/sky.hdr), for the camera and sky pictures of the
-README. Spheres and the plane use wavepath's node extras (see README, Scenes)."""
+but a sky (render it with --sky assets/sky.hdr), for the camera and sky pictures of
+docs/camera-and-sky.md. Spheres and the plane use wavepath's node extras (docs/scenes.md)."""
 import json
 import math
 import pathlib
 
-# Pure Lambertian surfaces (wavepath's material extras), as the README pictures show them.
+# Pure Lambertian surfaces (wavepath's material extras), as the pictures in docs/ show them.
 LAMBERT = {"extras": {"wavepath": {"bsdf": "lambert"}}}
 
 def sphere(x, z, material):

@@ -25,27 +25,9 @@ WP_BEGIN
 // §13.6.7): a marginal CDF over rows, height + 1 floats from 0 to 1, and for each row a
 // conditional CDF over its columns, width + 1 floats from 0 to 1, rows one after another
 // (row r starts at r * (width + 1)). Both are built on the host (src/scene/environment_map.h)
-// and read through WP_ENV_MARGINAL(i), WP_ENV_CONDITIONAL(i) and WP_ENV_RADIANCE(i) (texel i =
-// row * width + column, top row first; rgb radiance, w unused): C++ and OpenCL index arrays
-// passed as arguments; a GLSL stage defines the three macros to fetch texels.
-// Functions take the radiance (WP_ENV_RADIANCE_BUFFER), the two CDFs (WP_ENV_CDF_BUFFERS) or
-// all three (WP_ENV_BUFFERS), in that order.
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_ENV_RADIANCE_BUFFER WP_GLOBAL_PTR(vec4) envRadiance,
-#define WP_ENV_CDF_BUFFERS WP_GLOBAL_PTR(float) envMarginal, WP_GLOBAL_PTR(float) envConditional,
-#define WP_ENV_CDF_BUFFER_ARGS envMarginal, envConditional,
-#define WP_ENV_RADIANCE_BUFFER_ARG envRadiance,
-#define WP_ENV_RADIANCE(i) envRadiance[i]
-#define WP_ENV_MARGINAL(i) envMarginal[i]
-#define WP_ENV_CONDITIONAL(i) envConditional[i]
-#else
-#define WP_ENV_RADIANCE_BUFFER
-#define WP_ENV_CDF_BUFFERS
-#define WP_ENV_CDF_BUFFER_ARGS
-#define WP_ENV_RADIANCE_BUFFER_ARG
-#endif
-#define WP_ENV_BUFFERS WP_ENV_RADIANCE_BUFFER WP_ENV_CDF_BUFFERS
-#define WP_ENV_BUFFER_ARGS WP_ENV_RADIANCE_BUFFER_ARG WP_ENV_CDF_BUFFER_ARGS
+// and read through WP_LOAD(skyMarginal, i), WP_LOAD(skyConditional, i) and
+// WP_LOAD(skyRadiance, i) (texel i = row * width + column, top row first; rgb radiance, w
+// unused).
 
 // The two-argument arctangent: OpenCL spells it atan2, GLSL and GLM atan(y, x).
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
@@ -57,14 +39,20 @@ WP_BEGIN
 
 WP_FN GpuEnvironment makeEnvironment(uint width, uint height, float intensity, float rotation) {
   GpuEnvironment env;
-  env.transform = make_vec4(intensity, rotation, 0.0f, 0.0f);
-  env.size = make_uvec4(width, height, 0u, 0u);
+  env.intensity = intensity;
+  env.rotation = rotation;
+  env.selectionProbability = 0.0f;
+  env.unused0 = 0.0f;
+  env.width = width;
+  env.height = height;
+  env.unused1 = 0u;
+  env.unused2 = 0u;
   return env;
 }
 
 // Map coordinates (u, v) in [0, 1]^2 of the world direction `direction` (unit).
 WP_FN vec2 environmentUv(GpuEnvironment env, vec3 direction) {
-  float u = 0.5f + (wpAtan2(direction.x, -direction.z) + env.transform.y) * (0.5f * WP_INV_PI);
+  float u = 0.5f + (wpAtan2(direction.x, -direction.z) + env.rotation) * (0.5f * WP_INV_PI);
   u = u - floor(u);
   // theta from atan2 rather than acos(y): near the poles y = cos(theta) has lost theta's
   // digits, while the horizontal length still holds sin(theta) to full precision.
@@ -74,7 +62,7 @@ WP_FN vec2 environmentUv(GpuEnvironment env, vec3 direction) {
 
 // The unit world direction at map coordinates (u, v): the inverse of environmentUv.
 WP_FN vec3 environmentDirection(GpuEnvironment env, vec2 uv) {
-  float phi = 2.0f * WP_PI * (uv.x - 0.5f) - env.transform.y;
+  float phi = 2.0f * WP_PI * (uv.x - 0.5f) - env.rotation;
   float theta = WP_PI * uv.y;
   float sinTheta = sin(theta);
   return make_vec3(sinTheta * sin(phi), cos(theta), -sinTheta * cos(phi));
@@ -82,48 +70,48 @@ WP_FN vec3 environmentDirection(GpuEnvironment env, vec2 uv) {
 
 // Index (row * width + column) of the texel holding (u, v).
 WP_FN uint environmentTexel(GpuEnvironment env, vec2 uv) {
-  uint column = min(toUint(uv.x * toFloat(env.size.x)), env.size.x - 1u);
-  uint row = min(toUint(uv.y * toFloat(env.size.y)), env.size.y - 1u);
-  return row * env.size.x + column;
+  uint column = min(toUint(uv.x * toFloat(env.width)), env.width - 1u);
+  uint row = min(toUint(uv.y * toFloat(env.height)), env.height - 1u);
+  return row * env.width + column;
 }
 
 // Sky radiance seen along `direction` (unit), intensity included: the nearest texel.
-WP_FN vec3 environmentRadiance(WP_ENV_RADIANCE_BUFFER GpuEnvironment env, vec3 direction) {
-  vec4 texel = WP_ENV_RADIANCE(environmentTexel(env, environmentUv(env, direction)));
-  return make_vec3(texel.x, texel.y, texel.z) * env.transform.x;
+WP_FN vec3 environmentRadiance(WP_BUFFERS GpuEnvironment env, vec3 direction) {
+  vec4 texel = WP_LOAD(skyRadiance, environmentTexel(env, environmentUv(env, direction)));
+  return make_vec3(texel.x, texel.y, texel.z) * env.intensity;
 }
 
 // Density over (u, v) of choosing texel `texel`: its row's marginal probability times its
 // column's conditional one, over the area of a texel in (u, v).
-WP_FN float environmentUvPdf(WP_ENV_CDF_BUFFERS GpuEnvironment env, uint texel) {
-  uint row = texel / env.size.x;
-  uint column = texel - row * env.size.x;
-  uint base = row * (env.size.x + 1u);
-  float rowProbability = WP_ENV_MARGINAL(row + 1u) - WP_ENV_MARGINAL(row);
-  float columnProbability = WP_ENV_CONDITIONAL(base + column + 1u) - WP_ENV_CONDITIONAL(base + column);
-  return rowProbability * columnProbability * toFloat(env.size.x) * toFloat(env.size.y);
+WP_FN float environmentUvPdf(WP_BUFFERS GpuEnvironment env, uint texel) {
+  uint row = texel / env.width;
+  uint column = texel - row * env.width;
+  uint base = row * (env.width + 1u);
+  float rowProbability = WP_LOAD(skyMarginal, row + 1u) - WP_LOAD(skyMarginal, row);
+  float columnProbability = WP_LOAD(skyConditional, base + column + 1u) - WP_LOAD(skyConditional, base + column);
+  return rowProbability * columnProbability * toFloat(env.width) * toFloat(env.height);
 }
 
 // Solid-angle density of sampleEnvironment choosing `direction` (unit): the (u, v) density
 // divided by the Jacobian of the lat-long map, d(omega) = 2 pi^2 sin(theta) du dv. Zero at
 // the poles, where the map degenerates and no sample lands.
-WP_FN float environmentPdf(WP_ENV_CDF_BUFFERS GpuEnvironment env, vec3 direction) {
+WP_FN float environmentPdf(WP_BUFFERS GpuEnvironment env, vec3 direction) {
   vec2 uv = environmentUv(env, direction);
   float sinTheta = sin(WP_PI * uv.y);
   if (sinTheta <= 0.0f) return 0.0f;
-  return environmentUvPdf(WP_ENV_CDF_BUFFER_ARGS env, environmentTexel(env, uv)) / (2.0f * WP_PI * WP_PI * sinTheta);
+  return environmentUvPdf(WP_BUFFERS_ARG env, environmentTexel(env, uv)) / (2.0f * WP_PI * WP_PI * sinTheta);
 }
 
 // The texel (row * width + column) sampled by u in [0, 1)^2: u.y finds the row whose
 // marginal interval [cdf[row], cdf[row + 1]) holds it, then u.x the column within that row's
 // conditional CDF, each by a binary search that keeps cdf[lo] <= u < cdf[hi]. Intervals of
 // zero probability are empty and never chosen.
-WP_FN uint findEnvironmentTexel(WP_ENV_CDF_BUFFERS uint width, uint height, vec2 u) {
+WP_FN uint findEnvironmentTexel(WP_BUFFERS uint width, uint height, vec2 u) {
   uint lo = 0u;
   uint hi = height;
   while (hi - lo > 1u) {
     uint mid = (lo + hi) / 2u;
-    if (WP_ENV_MARGINAL(mid) <= u.y) {
+    if (WP_LOAD(skyMarginal, mid) <= u.y) {
       lo = mid;
     } else {
       hi = mid;
@@ -135,7 +123,7 @@ WP_FN uint findEnvironmentTexel(WP_ENV_CDF_BUFFERS uint width, uint height, vec2
   hi = width;
   while (hi - lo > 1u) {
     uint mid = (lo + hi) / 2u;
-    if (WP_ENV_CONDITIONAL(base + mid) <= u.x) {
+    if (WP_LOAD(skyConditional, base + mid) <= u.x) {
       lo = mid;
     } else {
       hi = mid;
@@ -149,17 +137,17 @@ WP_FN uint findEnvironmentTexel(WP_ENV_CDF_BUFFERS uint width, uint height, vec2
 // of each places the point uniformly within the texel's (u, v) patch. The pdf is in solid
 // angle and excludes the choice between the sky and other lights; distance is WP_FLT_MAX
 // (the shadow ray runs to infinity); radiance includes the intensity.
-WP_FN LightSample sampleEnvironment(WP_ENV_BUFFERS GpuEnvironment env, vec2 u) {
-  uint width = env.size.x;
-  uint height = env.size.y;
-  uint texel = findEnvironmentTexel(WP_ENV_CDF_BUFFER_ARGS width, height, u);
+WP_FN LightSample sampleEnvironment(WP_BUFFERS GpuEnvironment env, vec2 u) {
+  uint width = env.width;
+  uint height = env.height;
+  uint texel = findEnvironmentTexel(WP_BUFFERS_ARG width, height, u);
   uint row = texel / width;
   uint column = texel - row * width;
   uint base = row * (width + 1u);
-  float m0 = WP_ENV_MARGINAL(row);
-  float m1 = WP_ENV_MARGINAL(row + 1u);
-  float c0 = WP_ENV_CONDITIONAL(base + column);
-  float c1 = WP_ENV_CONDITIONAL(base + column + 1u);
+  float m0 = WP_LOAD(skyMarginal, row);
+  float m1 = WP_LOAD(skyMarginal, row + 1u);
+  float c0 = WP_LOAD(skyConditional, base + column);
+  float c1 = WP_LOAD(skyConditional, base + column + 1u);
   // The remainders are below 1 in exact arithmetic; rounding could make them 1, the edge of
   // the next texel.
   float dv = min((u.y - m0) / (m1 - m0), 0.99999994f);
@@ -169,9 +157,9 @@ WP_FN LightSample sampleEnvironment(WP_ENV_BUFFERS GpuEnvironment env, vec2 u) {
   LightSample s = noLightSample();
   s.direction = environmentDirection(env, uv);
   s.distance = WP_FLT_MAX;
-  vec4 radiance = WP_ENV_RADIANCE(texel);
-  s.radiance = make_vec3(radiance.x, radiance.y, radiance.z) * env.transform.x;
-  float uvPdf = environmentUvPdf(WP_ENV_CDF_BUFFER_ARGS env, texel);
+  vec4 radiance = WP_LOAD(skyRadiance, texel);
+  s.radiance = make_vec3(radiance.x, radiance.y, radiance.z) * env.intensity;
+  float uvPdf = environmentUvPdf(WP_BUFFERS_ARG env, texel);
   s.pdf = sinTheta > 0.0f ? uvPdf / (2.0f * WP_PI * WP_PI * sinTheta) : 0.0f;
   return s;
 }

@@ -4,9 +4,9 @@
 #ifndef WP_INTEGRATOR_H
 #define WP_INTEGRATOR_H
 
+#include "binding_table.h"
 #include "bsdf.h"
 #include "environment.h"
-#include "layout.h"
 #include "lights.h"
 #include "rng.h"
 #include "sampling.h"
@@ -14,16 +14,6 @@
 #include "texture.h"
 
 WP_BEGIN
-
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SHADING_BUFFERS \
-  WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuMaterial) materials, WP_LIGHT_BUFFER WP_ENV_BUFFERS WP_TEXTURE_BUFFERS
-#define WP_SHADING_BUFFER_ARGS \
-  WP_SURFACE_BUFFER_ARGS materials, WP_LIGHT_BUFFER_ARG WP_ENV_BUFFER_ARGS WP_TEXTURE_BUFFER_ARGS
-#else
-#define WP_SHADING_BUFFERS
-#define WP_SHADING_BUFFER_ARGS
-#endif
 
 #define WP_SHADE_EXTEND 1u  // ShadeResult.next is a ray to trace
 #define WP_SHADE_SHADOW 2u  // ShadeResult.shadow is a shadow ray to trace
@@ -41,33 +31,34 @@ WP_STRUCT_END(ShadeResult)
 
 WP_FN vec3 xyz(vec4 v) { return make_vec3(v.x, v.y, v.z); }
 
-// The biased contribution clamp (RenderParams.shading.y, 0 = off) on what a path adds
-// after its first vertex; light seen directly by the camera is never clamped.
+// The biased contribution clamp (RenderParams.contributionClamp, 0 = off) on what a path
+// adds after its first vertex; light seen directly by the camera is never clamped.
 WP_FN vec3 clampedContribution(RenderParams params, vec3 c) {
-  float limit = asFloat(params.shading.y);
+  float limit = params.contributionClamp;
   return limit > 0.0f ? clampContribution(c, limit) : c;
 }
 
 // A ray that left the scene sees the sky. Next event estimation samples the sky with
-// probability sky.transform.z, so a BSDF-sampled ray's sky radiance is weighed against that.
-WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray) {
+// probability sky.selectionProbability, so a BSDF-sampled ray's sky radiance is weighed
+// against that.
+WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
   ShadeResult r;
   r.flags = 0u;
-  vec3 direction = xyz(ray.direction);
-  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays: nothing to weigh against
-  float skyChoice = params.sky.transform.z;
+  vec3 direction = rayDirection(ray);
+  float bsdfPdfOfRay = rayBsdfPdf(ray);  // 0 for camera rays: nothing to weigh against
+  float skyChoice = params.sky.selectionProbability;
   float weight = 1.0f;
   if (bsdfPdfOfRay > 0.0f && skyChoice > 0.0f) {
-    uint mode = params.mode.y;
+    uint mode = params.mode;
     if (mode == WP_MODE_NEE) {
       weight = 0.0f;
     } else if (mode == WP_MODE_MIS) {
-      float skyPdf = skyChoice * environmentPdf(WP_ENV_CDF_BUFFER_ARGS params.sky, direction);
+      float skyPdf = skyChoice * environmentPdf(WP_BUFFERS_ARG params.sky, direction);
       weight = balanceHeuristic(bsdfPdfOfRay, skyPdf);
     }
   }
-  r.radiance = xyz(ray.throughput) * environmentRadiance(WP_ENV_RADIANCE_BUFFER_ARG params.sky, direction) * weight;
-  if (ray.state.y > 0u) {
+  r.radiance = rayThroughput(ray) * environmentRadiance(WP_BUFFERS_ARG params.sky, direction) * weight;
+  if (rayBounce(ray) > 0u) {
     r.radiance = clampedContribution(params, r.radiance);
   }
   return r;
@@ -77,18 +68,18 @@ WP_FN ShadeResult shadeMiss(WP_SHADING_BUFFERS RenderParams params, PathRay ray)
 // times COLOR_0 times the texture; metallic and roughness times the texture's blue and
 // green; emission times the emissive texture). Surfaces without TEXCOORD_0 (and spheres and
 // planes) use the constant factors.
-WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
   if (!s.hasUv) {
     return m;
   }
-  vec3 emission = texturedEmission(WP_TEXTURE_BUFFER_ARGS xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
+  vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
   m.emission = make_vec4(emission.x, emission.y, emission.z, m.emission.w);
   if (m.info.y != WP_INVALID) {
-    m.baseColor = m.baseColor * sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.y, s.uv);
+    m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG m.info.y, s.uv);
   }
   if (m.info.z != WP_INVALID) {
-    vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.z, s.uv);
+    vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.z, s.uv);
     m.surface.x *= t.z;
     m.surface.y *= t.y;
   }
@@ -100,11 +91,11 @@ WP_FN GpuMaterial texturedMaterial(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit 
 // file's TANGENT or else the triangle's own uv gradient (SurfaceHit), orthogonalized against
 // the interpolated normal. Falls back to the unmapped normal where there is no frame or the
 // result would face away from the geometric front.
-WP_FN vec3 normalMapped(WP_TEXTURE_BUFFERS GpuMaterial m, SurfaceHit s) {
+WP_FN vec3 normalMapped(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   if (m.info.w == WP_INVALID || !s.hasUv) {
     return s.shadingNormal;
   }
-  vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS m.info.w, s.uv);
+  vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.w, s.uv);
   float scale = m.normalMap.x;
   vec3 tangentSpace = make_vec3((2.0f * t.x - 1.0f) * scale, (2.0f * t.y - 1.0f) * scale, 2.0f * t.z - 1.0f);
   vec3 n = s.shadingNormal;
@@ -125,7 +116,7 @@ WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) 
 }
 
 // Bounce numbering follows Cycles' "max bounces": the camera ray hits the vertex of bounce
-// 0, and with params.mode.x = D the path gathers light at vertices 0..D (next event
+// 0, and with params.maxBounces = D the path gathers light at vertices 0..D (next event
 // estimation there, or emission found by the ray leaving them), so D = 0 is direct light.
 //
 // Delta lobes (smooth mirror and glass) cannot be light-sampled: evalBsdf gives them no
@@ -135,26 +126,26 @@ WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) 
 // Media: a ray that reaches the back side of a surface travelled inside it, so the
 // material's KHR_materials_volume attenuation applies over t (Beer's law). This assumes
 // closed meshes and media that do not nest or overlap.
-WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
+WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
                            uint primitive) {
   ShadeResult r;
   r.flags = 0u;
   r.radiance = make_vec3(0.0f, 0.0f, 0.0f);
-  vec3 direction = xyz(ray.direction);
-  vec3 throughput = xyz(ray.throughput);
-  float bsdfPdfOfRay = ray.direction.w;  // 0 for camera rays and delta samples: nothing to weigh against
-  uint rng = ray.state.x;
-  uint bounce = ray.state.y;
-  uint maxBounces = params.mode.x;
-  uint mode = params.mode.y;
-  uint lightCount = params.mode.w;
-  uint bsdfFlags = params.shading.x;
-  uint lightSelection = params.shading.z;
+  vec3 direction = rayDirection(ray);
+  vec3 throughput = rayThroughput(ray);
+  float bsdfPdfOfRay = rayBsdfPdf(ray);  // 0 for camera rays and delta samples: nothing to weigh against
+  uint rng = rayRngState(ray);
+  uint bounce = rayBounce(ray);
+  uint maxBounces = params.maxBounces;
+  uint mode = params.mode;
+  uint lightCount = params.lightCount;
+  uint bsdfFlags = params.bsdfFlags;
+  uint lightSelection = params.lightSelection;
 
-  float time = ray.throughput.w;
-  SurfaceHit s = surfaceAt(WP_SURFACE_BUFFER_ARGS instanceField, primitive, xyz(ray.origin) + direction * t, time);
-  GpuMaterial m = texturedMaterial(WP_TEXTURE_BUFFER_ARGS WP_MATERIAL(s.material), s);
-  s.shadingNormal = normalMapped(WP_TEXTURE_BUFFER_ARGS m, s);
+  float time = rayTime(ray);
+  SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, time);
+  GpuMaterial m = texturedMaterial(WP_BUFFERS_ARG WP_LOAD(materials, s.material), s);
+  s.shadingNormal = normalMapped(WP_BUFFERS_ARG m, s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
@@ -170,10 +161,10 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       } else if (mode == WP_MODE_MIS) {
         // The selection probability as seen from the previous vertex (the ray's origin),
         // times the chance that next event estimation chose the triangles over the sky.
-        GpuLight light = WP_LIGHT(s.light);
-        float selection = (1.0f - params.sky.transform.z) *
-                          lightSelectionProbability(WP_LIGHT_BUFFER_ARG lightCount, lightSelection, light,
-                                                    xyz(ray.origin), time);
+        GpuLight light = WP_LOAD(lights, s.light);
+        float selection = (1.0f - params.sky.selectionProbability) *
+                          lightSelectionProbability(WP_BUFFERS_ARG lightCount, lightSelection, light,
+                                                    rayOrigin(ray), time);
         weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
       }
     }
@@ -198,8 +189,8 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
 
   // Light sampling, in every mode but BSDF-only; there it still reaches the punctual lights,
   // which no BSDF sample can hit, and leaves the rest to BSDF sampling.
-  float skyChoice = params.sky.transform.z;
-  uint punctualLights = params.shading.w;
+  float skyChoice = params.sky.selectionProbability;
+  uint punctualLights = params.punctualLightCount;
   if ((mode != WP_MODE_BSDF || punctualLights > 0u) && (lightCount > 0u || skyChoice > 0.0f)) {
     RngDraw3 lightDraw = rngFloat3(rng);
     rng = lightDraw.state;
@@ -208,11 +199,11 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
     // reused, rescaled, to select the triangle.
     LightSample ls;
     if (u.x < skyChoice) {
-      ls = sampleEnvironment(WP_ENV_BUFFER_ARGS params.sky, make_vec2(u.y, u.z));
+      ls = sampleEnvironment(WP_BUFFERS_ARG params.sky, make_vec2(u.y, u.z));
       ls.pdf *= skyChoice;
     } else {
       float select = min((u.x - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_LIGHT_BUFFER_ARG WP_LIGHT_TEXTURE_BUFFER_ARGS lightCount, lightSelection, s.position, time,
+      ls = sampleLight(WP_BUFFERS_ARG lightCount, lightSelection, s.position, time,
                        make_vec3(select, u.y, u.z));
       ls.pdf *= 1.0f - skyChoice;
     }
@@ -249,7 +240,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
   if (bounce < maxBounces || mode != WP_MODE_NEE || isDelta) {
     vec3 nextThroughput = throughput * bs.weight;
     float survival = 1.0f;
-    if (bounce >= params.mode.z) {
+    if (bounce >= params.rouletteStart) {
       // Russian roulette: keep the path with probability max(throughput), clamped to 1.
       survival = min(1.0f, maxComponent(nextThroughput));
       rng = rngNext(rng);
@@ -263,10 +254,7 @@ WP_FN ShadeResult shadeHit(WP_SHADING_BUFFERS RenderParams params, PathRay ray, 
       vec3 origin = offsetRayOrigin(s.position, s.normal, wi);
       nextThroughput = nextThroughput / survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;
-      r.next.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
-      r.next.direction = make_vec4(wi.x, wi.y, wi.z, rayPdf);
-      r.next.throughput = make_vec4(nextThroughput.x, nextThroughput.y, nextThroughput.z, time);
-      r.next.state = make_uvec4(rng, bounce + 1u, 0u, 0u);
+      r.next = makePathRay(origin, rayPathSlot(ray), wi, rayPdf, nextThroughput, time, rng, bounce + 1u);
       r.flags |= WP_SHADE_EXTEND;
     }
   }

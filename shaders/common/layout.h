@@ -1,6 +1,12 @@
-// GPU buffer structs, binding indices and workgroup sizes shared by host, GLSL and OpenCL.
-// Every struct is made of 16-byte vec4/uvec4 fields so std430, OpenCL and C++ agree on the
-// layout; the host checks sizes with static_assert (src/render/gpu_layout_check.cpp).
+// GPU buffer structs and workgroup sizes shared by host, GLSL and OpenCL. Every struct is
+// made of 16-byte vec4/uvec4 fields, or of 4-byte scalars in groups of four, so std140,
+// std430, OpenCL and C++ agree on the layout; the host checks sizes and offsets with
+// static_assert (src/render/gpu_layout_check.cpp). A struct that a stage reads from a buffer
+// is a record: its fields are listed once, F(type, name) in WP_FIELDS_<Name>, from which
+// WP_RECORD declares it and the Vulkan stages generate its texel loader (binding_table.h
+// says which buffer holds which record). Records pack several values into a vec4; code
+// reads them through the named accessors that follow each record (rayBounce(ray), never
+// ray.state.y), the same names in GLSL, OpenCL C and C++.
 #ifndef WP_LAYOUT_H
 #define WP_LAYOUT_H
 
@@ -11,100 +17,98 @@ WP_BEGIN
 
 #define WP_WORKGROUP_SIZE 64
 
-// Binding indices (set 0) of the Vulkan stages; OpenCL passes the same buffers as kernel
-// arguments. Read-only data is bound as uniform texel buffers (RGBA32UI): on lavapipe a
-// texel fetch is a SIMD gather while a storage-buffer load is a per-lane scalar loop, and
-// on GPUs it goes through the texture cache. Writes go through storage buffers.
-#define WP_BINDING_PARAMS 0         // RenderParams (uniform)
-#define WP_BINDING_NODES 1          // BvhNode[] (texels): all bottom-level BVHs, then the top level
-#define WP_BINDING_TRIANGLES 2      // GpuTriangle[] (texels) in BVH leaf order
-#define WP_BINDING_INSTANCES 3      // GpuInstance[] (texels)
-#define WP_BINDING_PLANES 4         // GpuPlane[] (texels)
-#define WP_BINDING_MATERIALS 5      // GpuMaterial[] (texels)
-#define WP_BINDING_LIGHTS 6         // GpuLight[] (texels)
-#define WP_BINDING_RAYS 7           // PathRay[2 * maxPaths]: two ping-pong queues (written)
-#define WP_BINDING_HITS 8           // HitRecord[maxPaths] (written)
-#define WP_BINDING_SHADOW_RAYS 9    // ShadowRay[maxPaths] (written)
-#define WP_BINDING_PATH_RADIANCE 10 // vec4[maxPaths]: radiance of each path this pass
-#define WP_BINDING_COUNTERS 11      // QueueCounters
-#define WP_BINDING_ACCUM 12         // vec4[2 * pixels]: sum of radiance, sum of squares
-#define WP_BINDING_ENV_RADIANCE 13  // vec4[] (texels): sky radiance per texel (environment.h)
-#define WP_BINDING_ENV_MARGINAL 14  // float[] (texels): the sky's row distribution
-#define WP_BINDING_ENV_CONDITIONAL 15  // float[] (texels): its column distributions
-#define WP_BINDING_TRIANGLE_SHADING 16  // GpuTriangleShading[] (texels), parallel to the triangles
-#define WP_BINDING_TEXTURES 17      // GpuTexture[] (texels)
-#define WP_BINDING_TEXELS 18        // uint[] (texels): RGBA8 texels of every texture, r in the low byte
-#define WP_BINDING_RAYS_READ 19     // the rays buffer again, as texels (Vulkan only)
-#define WP_BINDING_HITS_READ 20     // the hits buffer again, as texels (Vulkan only)
-#define WP_BINDING_SHADOW_RAYS_READ 21  // the shadow-ray buffer again, as texels (Vulkan only)
-// float[] (texels): the BSDF's constant tables (energy_compensation.h), uploaded from the
-// header's own array. Vulkan only: OpenCL and C++ read that array as a constant, but
-// llvmpipe takes minutes to compile a shader that holds it.
-#define WP_BINDING_BSDF_TABLES 22
-#define WP_BINDING_COUNT 23u
-
-// Integrator modes (RenderParams.mode.y).
+// Integrator modes (RenderParams.mode).
 #define WP_MODE_MIS 0u
 #define WP_MODE_NEE 1u
 #define WP_MODE_BSDF 2u
 
-// Light selection for next event estimation (RenderParams.shading.z).
+// Light selection for next event estimation (RenderParams.lightSelection).
 #define WP_LIGHT_SELECTION_POWER 0u        // alias table by emitted power
 #define WP_LIGHT_SELECTION_SOLID_ANGLE 1u  // by subtended solid angle times luminance (lights.h)
 
-// GpuInstance.info.x: what the instance is.
+// What an instance is (instanceKind).
 #define WP_INSTANCE_MESH 0u
 #define WP_INSTANCE_SPHERE 1u  // unit sphere at the object-space origin
 
 #define WP_INVALID 0xffffffffu
 
-// Element access to the read-only scene buffers. C++ and OpenCL index arrays passed as
-// arguments; GLSL (shaders/vulkan/bindings.glsl) fetches texels.
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_NODE(i) nodes[i]
-#define WP_TRIANGLE(i) triangles[i]
-#define WP_INSTANCE(i) instances[i]
-#define WP_PLANE(i) planes[i]
-#define WP_MATERIAL(i) materials[i]
-#define WP_LIGHT(i) lights[i]
-#define WP_TRIANGLE_SHADING(i) triangleShading[i]
-#define WP_TEXTURE(i) textures[i]
-#define WP_TEXEL_WORD(i) texels[i]
-#endif
-
 // BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
 // count 0 is an interior node whose index is `index`; a child with count > 0 is a leaf
 // holding primitives [index, index + count). An empty child has min > max and count 0 and
 // index WP_INVALID. Bottom-level leaves hold triangles, the top level holds instances.
-WP_STRUCT(BvhNode)
-  vec4 leftMin;   // xyz: bounds min; w: asFloat(left index)
-  vec4 leftMax;   // xyz: bounds max; w: asFloat(left count)
-  vec4 rightMin;  // xyz; w: asFloat(right index)
-  vec4 rightMax;  // xyz; w: asFloat(right count)
-WP_STRUCT_END(BvhNode)
+//   leftMin: xyz: bounds min; w: asFloat(left index)
+//   leftMax: xyz: bounds max; w: asFloat(left count)
+//   rightMin: xyz; w: asFloat(right index)
+//   rightMax: xyz; w: asFloat(right count)
+#define WP_FIELDS_BvhNode(F) \
+  F(vec4, leftMin)           \
+  F(vec4, leftMax)           \
+  F(vec4, rightMin)          \
+  F(vec4, rightMax)
+WP_RECORD(BvhNode)
+WP_FN vec3 nodeLeftMin(BvhNode n) { return make_vec3(n.leftMin.x, n.leftMin.y, n.leftMin.z); }
+WP_FN vec3 nodeLeftMax(BvhNode n) { return make_vec3(n.leftMax.x, n.leftMax.y, n.leftMax.z); }
+WP_FN uint nodeLeftIndex(BvhNode n) { return asUint(n.leftMin.w); }
+WP_FN uint nodeLeftCount(BvhNode n) { return asUint(n.leftMax.w); }
+WP_FN vec3 nodeRightMin(BvhNode n) { return make_vec3(n.rightMin.x, n.rightMin.y, n.rightMin.z); }
+WP_FN vec3 nodeRightMax(BvhNode n) { return make_vec3(n.rightMax.x, n.rightMax.y, n.rightMax.z); }
+WP_FN uint nodeRightIndex(BvhNode n) { return asUint(n.rightMin.w); }
+WP_FN uint nodeRightCount(BvhNode n) { return asUint(n.rightMax.w); }
 
 // Triangle in object space, stored in BVH leaf order: 64 bytes.
-WP_STRUCT(GpuTriangle)
-  vec4 v0;     // xyz: vertex 0
-  vec4 edge1;  // xyz: v1 - v0
-  vec4 edge2;  // xyz: v2 - v0
-  uvec4 info;  // x: material index, y: emitter ordinal within its mesh or WP_INVALID
-WP_STRUCT_END(GpuTriangle)
+//   v0: xyz: vertex 0
+//   edge1: xyz: v1 - v0
+//   edge2: xyz: v2 - v0
+//   info: x: material index, y: emitter ordinal within its mesh or WP_INVALID
+#define WP_FIELDS_GpuTriangle(F) \
+  F(vec4, v0)                    \
+  F(vec4, edge1)                 \
+  F(vec4, edge2)                 \
+  F(uvec4, info)
+WP_RECORD(GpuTriangle)
+WP_FN vec3 triangleVertex0(GpuTriangle t) { return make_vec3(t.v0.x, t.v0.y, t.v0.z); }
+WP_FN vec3 triangleEdge1(GpuTriangle t) { return make_vec3(t.edge1.x, t.edge1.y, t.edge1.z); }
+WP_FN vec3 triangleEdge2(GpuTriangle t) { return make_vec3(t.edge2.x, t.edge2.y, t.edge2.z); }
+WP_FN uint triangleMaterial(GpuTriangle t) { return t.info.x; }
+// Its ordinal among its mesh's emitters (its light is the instance's first light plus it),
+// or WP_INVALID.
+WP_FN uint triangleEmitter(GpuTriangle t) { return t.info.y; }
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
 // light samples, for the emissive texture), so the traversal's triangle records stay 64
 // bytes: 128 bytes.
-WP_STRUCT(GpuTriangleShading)
-  vec4 normal0;  // xyz: object-space unit vertex normal (glTF NORMAL) at vertex 0, w: u0;
-  vec4 normal1;  // all three normals zero: shade with the geometric normal (flat); w: u1
-  vec4 normal2;  // w: u2
-  vec4 v;        // xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
-  uvec4 colors;  // xyz: COLOR_0 at the three vertices as RGBA8 (linear, r in the low byte);
-                 // white without COLOR_0
-  vec4 tangent0;  // xyz: object-space unit glTF TANGENT at vertex 0, w: bitangent sign (+-1);
-  vec4 tangent1;  // all zero without TANGENT (the frame then comes from the uv gradient)
-  vec4 tangent2;
-WP_STRUCT_END(GpuTriangleShading)
+//   normal0..2: xyz: object-space unit vertex normals (glTF NORMAL), all three zero: shade
+//     with the geometric normal (flat); w: TEXCOORD_0's u at the three vertices
+//   v: xyz: TEXCOORD_0's v at the three vertices, w: 1 if the mesh has TEXCOORD_0
+//   colors: xyz: COLOR_0 at the three vertices as RGBA8 (linear, r in the low byte); white
+//     without COLOR_0
+//   tangent0..2: xyz: object-space unit glTF TANGENTs, w: bitangent sign (+-1); all zero
+//     without TANGENT (the frame then comes from the uv gradient)
+#define WP_FIELDS_GpuTriangleShading(F) \
+  F(vec4, normal0)                      \
+  F(vec4, normal1)                      \
+  F(vec4, normal2)                      \
+  F(vec4, v)                            \
+  F(uvec4, colors)                      \
+  F(vec4, tangent0)                     \
+  F(vec4, tangent1)                     \
+  F(vec4, tangent2)
+WP_RECORD(GpuTriangleShading)
+WP_FN vec3 vertexNormal0(GpuTriangleShading s) { return make_vec3(s.normal0.x, s.normal0.y, s.normal0.z); }
+WP_FN vec3 vertexNormal1(GpuTriangleShading s) { return make_vec3(s.normal1.x, s.normal1.y, s.normal1.z); }
+WP_FN vec3 vertexNormal2(GpuTriangleShading s) { return make_vec3(s.normal2.x, s.normal2.y, s.normal2.z); }
+WP_FN vec2 vertexUv0(GpuTriangleShading s) { return make_vec2(s.normal0.w, s.v.x); }
+WP_FN vec2 vertexUv1(GpuTriangleShading s) { return make_vec2(s.normal1.w, s.v.y); }
+WP_FN vec2 vertexUv2(GpuTriangleShading s) { return make_vec2(s.normal2.w, s.v.z); }
+WP_FN bool hasUv(GpuTriangleShading s) { return s.v.w != 0.0f; }
+// COLOR_0 as RGBA8 (r in the low byte).
+WP_FN uint vertexColor0(GpuTriangleShading s) { return s.colors.x; }
+WP_FN uint vertexColor1(GpuTriangleShading s) { return s.colors.y; }
+WP_FN uint vertexColor2(GpuTriangleShading s) { return s.colors.z; }
+// xyz: the tangent, w: the bitangent's sign.
+WP_FN vec4 vertexTangent0(GpuTriangleShading s) { return s.tangent0; }
+WP_FN vec4 vertexTangent1(GpuTriangleShading s) { return s.tangent1; }
+WP_FN vec4 vertexTangent2(GpuTriangleShading s) { return s.tangent2; }
 
 // GpuTexture.info.w bits: wrap modes (2 bits each, s then t) and flags.
 #define WP_TEXTURE_WRAP_REPEAT 0u
@@ -114,20 +118,35 @@ WP_STRUCT_END(GpuTriangleShading)
 #define WP_TEXTURE_NEAREST 32u  // nearest texel instead of bilinear
 
 // A texture's header: 16 bytes.
-WP_STRUCT(GpuTexture)
-  uvec4 info;  // x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
-WP_STRUCT_END(GpuTexture)
+//   info: x: first texel in the texel buffer, y: width, z: height, w: wrap and flags
+#define WP_FIELDS_GpuTexture(F) \
+  F(uvec4, info)
+WP_RECORD(GpuTexture)
+WP_FN uint textureFirstTexel(GpuTexture t) { return t.info.x; }
+WP_FN uint textureWidth(GpuTexture t) { return t.info.y; }
+WP_FN uint textureHeight(GpuTexture t) { return t.info.z; }
+WP_FN uint textureWrapS(GpuTexture t) { return t.info.w & 3u; }
+WP_FN uint textureWrapT(GpuTexture t) { return (t.info.w >> 2u) & 3u; }
+WP_FN bool textureIsSrgb(GpuTexture t) { return (t.info.w & WP_TEXTURE_SRGB) != 0u; }
+WP_FN bool textureIsNearest(GpuTexture t) { return (t.info.w & WP_TEXTURE_NEAREST) != 0u; }
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
-WP_STRUCT(GpuInstance)
-  vec4 worldToObject0;  // rows of the 3x4 world-to-object matrix (at shutter open if it moves)
-  vec4 worldToObject1;
-  vec4 worldToObject2;
-  uvec4 info;  // x: WP_INSTANCE_*, y: BVH root node (mesh) or material (sphere),
-               // z: first light index of this instance's emissive triangles (WP_INVALID:
-               // none sampled), w: WP_INVALID if it stands still, else the index of its
-               // two motion keys in the instance buffer (motion.h)
-WP_STRUCT_END(GpuInstance)
+//   worldToObject0..2: rows of the 3x4 world-to-object matrix (at shutter open if it moves)
+//   info: x: WP_INSTANCE_*, y: BVH root node (mesh) or material (sphere), z: first light
+//     index of this instance's emissive triangles (WP_INVALID: none sampled), w: WP_INVALID
+//     if it stands still, else the index of its two motion keys in the instance buffer
+//     (motion.h)
+#define WP_FIELDS_GpuInstance(F) \
+  F(vec4, worldToObject0)        \
+  F(vec4, worldToObject1)        \
+  F(vec4, worldToObject2)        \
+  F(uvec4, info)
+WP_RECORD(GpuInstance)
+WP_FN uint instanceKind(GpuInstance inst) { return inst.info.x; }  // WP_INSTANCE_*
+WP_FN uint instanceBvhRoot(GpuInstance inst) { return inst.info.y; }
+WP_FN uint instanceSphereMaterial(GpuInstance inst) { return inst.info.y; }
+WP_FN uint instanceFirstLight(GpuInstance inst) { return inst.info.z; }
+WP_FN uint instanceMotionKeys(GpuInstance inst) { return inst.info.w; }
 
 // A moving instance's placement at shutter open and at shutter close is kept as two motion
 // keys, stored after the placed instances in the instance buffer in GpuInstance records (so
@@ -136,12 +155,24 @@ WP_STRUCT_END(GpuInstance)
 // (a transform with shear) the rows of the 3x4 object-to-world matrix. info.x says which.
 #define WP_MOTION_KEY_TRS 0u
 #define WP_MOTION_KEY_MATRIX 1u
+WP_FN uint motionKeyKind(GpuInstance key) { return key.info.x; }  // WP_MOTION_KEY_*
+WP_FN vec4 motionKeyTranslation(GpuInstance key) { return key.worldToObject0; }  // xyz
+WP_FN vec4 motionKeyRotation(GpuInstance key) { return key.worldToObject1; }
+WP_FN vec4 motionKeyScale(GpuInstance key) { return key.worldToObject2; }  // xyz
+WP_FN vec4 motionKeyRow0(GpuInstance key) { return key.worldToObject0; }
+WP_FN vec4 motionKeyRow1(GpuInstance key) { return key.worldToObject1; }
+WP_FN vec4 motionKeyRow2(GpuInstance key) { return key.worldToObject2; }
 
 // Infinite plane dot(n, p) = d, 32 bytes.
-WP_STRUCT(GpuPlane)
-  vec4 normalDistance;  // xyz: unit normal, w: d
-  uvec4 info;           // x: material index
-WP_STRUCT_END(GpuPlane)
+//   normalDistance: xyz: unit normal, w: d
+//   info: x: material index
+#define WP_FIELDS_GpuPlane(F) \
+  F(vec4, normalDistance)     \
+  F(uvec4, info)
+WP_RECORD(GpuPlane)
+WP_FN vec3 planeNormal(GpuPlane p) { return make_vec3(p.normalDistance.x, p.normalDistance.y, p.normalDistance.z); }
+WP_FN float planeDistance(GpuPlane p) { return p.normalDistance.w; }
+WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
 
 // GpuMaterial.info.x: which BSDF the material has.
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
@@ -150,18 +181,25 @@ WP_STRUCT_END(GpuPlane)
                                             // (extras.wavepath.diffuse = "disney")
 
 // A surface material, 112 bytes.
-WP_STRUCT(GpuMaterial)
-  vec4 baseColor;    // rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
-  vec4 emission;     // rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
-  vec4 surface;      // x: metallic, y: perceptual roughness, z: ior, w: transmission
-  vec4 attenuation;  // rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
-                     // (WP_FLT_MAX: no absorption)
-  uvec4 info;        // x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness
-                     // texture, w: normal texture (WP_INVALID: none)
-  vec4 normalMap;    // x: the normal texture's scale, yzw: unused
-  uvec4 emissiveMap;  // x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none),
-                      // yzw: unused
-WP_STRUCT_END(GpuMaterial)
+//   baseColor: rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
+//   emission: rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
+//   surface: x: metallic, y: perceptual roughness, z: ior, w: transmission
+//   attenuation: rgb: KHR_materials_volume attenuationColor, w: attenuationDistance
+//     (WP_FLT_MAX: no absorption)
+//   info: x: WP_MATERIAL_*, y: base colour texture, z: metallic-roughness texture, w: normal
+//     texture (WP_INVALID: none)
+//   normalMap: x: the normal texture's scale, yzw: unused
+//   emissiveMap: x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none), yzw:
+//     unused
+#define WP_FIELDS_GpuMaterial(F) \
+  F(vec4, baseColor)             \
+  F(vec4, emission)              \
+  F(vec4, surface)               \
+  F(vec4, attenuation)           \
+  F(uvec4, info)                 \
+  F(vec4, normalMap)             \
+  F(uvec4, emissiveMap)
+WP_RECORD(GpuMaterial)
 
 // GpuLight.info.y: what the light is, in the low bits, and its flags above them.
 #define WP_LIGHT_TRIANGLE 0u     // an emissive triangle (an area light)
@@ -177,66 +215,137 @@ WP_STRUCT_END(GpuMaterial)
 // alias): an emissive triangle in world space, or a glTF punctual light, whose position and
 // direction may move while the shutter is open. Read it through the accessors of lights.h.
 // 96 bytes.
-WP_STRUCT(GpuLight)
-  vec4 v0;        // triangle: xyz vertex 0, w area; punctual: xyz position at shutter open,
-                  // w cos of a spot's outer cone angle
-  vec4 edge1;     // triangle: xyz v1 - v0; punctual: xyz the unit direction it points (spot,
-                  // directional) at shutter open; w: probability of selecting this light
-  vec4 edge2;     // triangle: xyz v2 - v0; punctual: xyz position at shutter close;
-                  // w: alias threshold in [0, 1]
-  vec4 emission;  // rgb: radiance (triangle), radiant intensity in W/sr (point, spot) or
-                  // irradiance in W/m^2 (directional); w: luminance of the triangle's mean
-                  // emitted radiance (texture included), or of the intensity or irradiance
-  vec4 motion;    // punctual: xyz the direction at shutter close, w cos of a spot's inner
-                  // cone angle; unused by triangles
-  uvec4 info;     // x: alias index, y: WP_LIGHT_* kind | WP_LIGHT_DOUBLE_SIDED, z: the
-                  // triangle's GpuTriangleShading (its vertices in the order of v0, edge1,
-                  // edge2), w: its emissive texture (WP_INVALID: none)
-WP_STRUCT_END(GpuLight)
+//   v0: triangle: xyz vertex 0, w area; punctual: xyz position at shutter open, w cos of a
+//     spot's outer cone angle
+//   edge1: triangle: xyz v1 - v0; punctual: xyz the unit direction it points (spot,
+//     directional) at shutter open; w: probability of selecting this light
+//   edge2: triangle: xyz v2 - v0; punctual: xyz position at shutter close; w: alias
+//     threshold in [0, 1]
+//   emission: rgb: radiance (triangle), radiant intensity in W/sr (point, spot) or
+//     irradiance in W/m^2 (directional); w: luminance of the triangle's mean emitted
+//     radiance (texture included), or of the intensity or irradiance
+//   motion: punctual: xyz the direction at shutter close, w cos of a spot's inner cone
+//     angle; unused by triangles
+//   info: x: alias index, y: WP_LIGHT_* kind | WP_LIGHT_DOUBLE_SIDED, z: the triangle's
+//     GpuTriangleShading (its vertices in the order of v0, edge1, edge2), w: its emissive
+//     texture (WP_INVALID: none)
+#define WP_FIELDS_GpuLight(F) \
+  F(vec4, v0)                 \
+  F(vec4, edge1)              \
+  F(vec4, edge2)              \
+  F(vec4, emission)           \
+  F(vec4, motion)             \
+  F(uvec4, info)
+WP_RECORD(GpuLight)
 
-// Settings of the sky, 32 bytes of vec4/uvec4 for a uniform or constant buffer.
+// Settings of the sky, 32 bytes for a uniform or constant buffer.
 WP_STRUCT(GpuEnvironment)
-  vec4 transform;  // x: intensity (radiance multiplier); y: rotation about +y, radians;
-                   // z: probability that next event estimation samples the sky rather than
-                   // the emissive triangles; w: unused
-  uvec4 size;      // x: width, y: height (texels); z, w: unused
+  float intensity;  // radiance multiplier
+  float rotation;   // about +y, radians
+  // Probability that next event estimation samples the sky rather than the emissive
+  // triangles.
+  float selectionProbability;
+  float unused0;
+  uint width;  // texels
+  uint height;
+  uint unused1;
+  uint unused2;
 WP_STRUCT_END(GpuEnvironment)
 
-// Per-frame settings, a uniform buffer (OpenCL: a constant argument).
+// Per-frame settings, a read-only storage buffer (OpenCL: a constant argument).
 WP_STRUCT(RenderParams)
-  ThinLens camera;      // optics and placement of the camera (thin_lens.h)
-  GpuEnvironment sky;   // the sky seen by rays that leave the scene (environment.h)
-  uvec4 image;          // x: width, y: height, z: pixels traced (of region), w: seed
-  uvec4 mode;           // x: max bounces, y: WP_MODE_*, z: Russian roulette start bounce,
-                        // w: number of lights (triangles and punctual)
-  uvec4 counts;         // x: planes, y: top-level root node, z: instances, w: maxPaths
-  uvec4 shading;        // x: WP_BSDF_* flags, y: asUint(contribution clamp; 0 = off),
-                        // z: WP_LIGHT_SELECTION_*, w: number of punctual (delta) lights
-  uvec4 region;         // the pixels traced (image.z of them, row-major): x, y: first column
-                        // and row, z: width, w: height (the whole image unless --region)
+  ThinLens camera;     // optics and placement of the camera (thin_lens.h)
+  GpuEnvironment sky;  // the sky seen by rays that leave the scene (environment.h)
+  uint width;          // of the image, in pixels
+  uint height;
+  uint pixelCount;     // pixels traced: the region's (row-major)
+  uint seed;
+  uint maxBounces;     // counted as Cycles counts them (integrator.h)
+  uint mode;           // WP_MODE_*
+  uint rouletteStart;  // the first bounce at which Russian roulette may end a path
+  uint lightCount;     // lights in the light table (triangles and punctual)
+  uint planeCount;
+  uint tlasRoot;       // the top-level BVH's root node
+  uint instanceCount;  // placed instances
+  uint maxPaths;       // paths of a pass at most: the length of each queue
+  uint bsdfFlags;      // WP_BSDF_*
+  float contributionClamp;  // biased clamp on what a path adds after its first vertex; 0: off
+  uint lightSelection;      // WP_LIGHT_SELECTION_*
+  uint punctualLightCount;  // punctual (delta) lights, the last of the light table
+  // The pixels traced: first column and row, width and height (the whole image unless
+  // --region, or a tile of it when it does not fit the device at once).
+  uint regionX;
+  uint regionY;
+  uint regionWidth;
+  uint regionHeight;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
-WP_STRUCT(PathRay)
-  vec4 origin;      // xyz; w: asFloat(path slot in this pass)
-  vec4 direction;   // xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
-  vec4 throughput;  // rgb; w: the path's shutter time in [0, 1) (motion blur)
-  uvec4 state;      // x: RNG state, y: bounce of the vertex this ray will hit, z, w: unused
-WP_STRUCT_END(PathRay)
+//   origin: xyz; w: asFloat(path slot in this pass)
+//   direction: xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
+//   throughput: rgb; w: the path's shutter time in [0, 1) (motion blur)
+//   state: x: RNG state, y: bounce of the vertex this ray will hit, z, w: unused
+#define WP_FIELDS_PathRay(F) \
+  F(vec4, origin)            \
+  F(vec4, direction)         \
+  F(vec4, throughput)        \
+  F(uvec4, state)
+WP_RECORD(PathRay)
+WP_FN vec3 rayOrigin(PathRay r) { return make_vec3(r.origin.x, r.origin.y, r.origin.z); }
+WP_FN uint rayPathSlot(PathRay r) { return asUint(r.origin.w); }
+WP_FN vec3 rayDirection(PathRay r) { return make_vec3(r.direction.x, r.direction.y, r.direction.z); }
+// The solid-angle pdf of the BSDF sample that chose the direction; 0 for camera rays and
+// delta samples (nothing to weigh emission against).
+WP_FN float rayBsdfPdf(PathRay r) { return r.direction.w; }
+WP_FN vec3 rayThroughput(PathRay r) { return make_vec3(r.throughput.x, r.throughput.y, r.throughput.z); }
+WP_FN float rayTime(PathRay r) { return r.throughput.w; }
+WP_FN uint rayRngState(PathRay r) { return r.state.x; }
+WP_FN uint rayBounce(PathRay r) { return r.state.y; }
+WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
+                          uint rngState, uint bounce) {
+  PathRay r;
+  r.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
+  r.direction = make_vec4(direction.x, direction.y, direction.z, bsdfPdf);
+  r.throughput = make_vec4(throughput.x, throughput.y, throughput.z, time);
+  r.state = make_uvec4(rngState, bounce, 0u, 0u);
+  return r;
+}
 
 // Closest hit of the PathRay at the same queue position: 16 bytes.
-WP_STRUCT(HitRecord)
-  uvec4 hit;  // x: asUint(t) (WP_INVALID: miss), y: instance or plane index | WP_HIT_PLANE,
-              // z: primitive (global triangle index), w: unused
-WP_STRUCT_END(HitRecord)
+//   hit: x: asUint(t) (WP_INVALID: miss), y: instance or plane index | WP_HIT_PLANE, z:
+//     primitive (global triangle index), w: unused
+#define WP_FIELDS_HitRecord(F) \
+  F(uvec4, hit)
+WP_RECORD(HitRecord)
 #define WP_HIT_PLANE 0x80000000u
+WP_FN bool hitIsMiss(HitRecord h) { return h.hit.x == WP_INVALID; }
+WP_FN float hitDistance(HitRecord h) { return asFloat(h.hit.x); }
+WP_FN uint hitInstanceField(HitRecord h) { return h.hit.y; }  // instance, or plane | WP_HIT_PLANE
+WP_FN uint hitPrimitive(HitRecord h) { return h.hit.z; }
+// A hit at distance t, or a miss where instanceField is WP_INVALID.
+WP_FN HitRecord makeHitRecord(float t, uint instanceField, uint primitive) {
+  HitRecord h;
+  h.hit = make_uvec4(instanceField == WP_INVALID ? WP_INVALID : asUint(t), instanceField, primitive, 0u);
+  return h;
+}
 
 // Next-event-estimation shadow ray: 48 bytes.
-WP_STRUCT(ShadowRay)
-  vec4 origin;        // xyz; w: asFloat(path slot)
-  vec4 direction;     // xyz: unit; w: distance to the light sample (exclusive)
-  vec4 contribution;  // rgb: radiance added to the path if unoccluded; w: the path's shutter time
-WP_STRUCT_END(ShadowRay)
+//   origin: xyz; w: asFloat(path slot)
+//   direction: xyz: unit; w: distance to the light sample (exclusive)
+//   contribution: rgb: radiance added to the path if unoccluded; w: the path's shutter time
+#define WP_FIELDS_ShadowRay(F) \
+  F(vec4, origin)              \
+  F(vec4, direction)           \
+  F(vec4, contribution)
+WP_RECORD(ShadowRay)
+WP_FN vec3 shadowRayOrigin(ShadowRay s) { return make_vec3(s.origin.x, s.origin.y, s.origin.z); }
+WP_FN uint shadowRayPathSlot(ShadowRay s) { return asUint(s.origin.w); }
+WP_FN vec3 shadowRayDirection(ShadowRay s) { return make_vec3(s.direction.x, s.direction.y, s.direction.z); }
+WP_FN float shadowRayLength(ShadowRay s) { return s.direction.w; }
+WP_FN vec3 shadowRayContribution(ShadowRay s) {
+  return make_vec3(s.contribution.x, s.contribution.y, s.contribution.z);
+}
+WP_FN float shadowRayTime(ShadowRay s) { return s.contribution.w; }
 
 // Queue sizes and indirect dispatch arguments, written on the GPU. Kernels address it as a
 // flat uint array (atomics need a plain uint lvalue) through the word indices below.
@@ -253,13 +362,18 @@ WP_STRUCT_END(QueueCounters)
 #define WP_COUNTER_EXTEND_DISPATCH 8u
 #define WP_COUNTER_CONNECT_DISPATCH 12u
 #define WP_COUNTER_WORDS 16u
+WP_FN uint tracedRays(QueueCounters c) { return c.totals.x; }
+WP_FN uint tracedShadowRays(QueueCounters c) { return c.totals.y; }
 
 // Per-dispatch constants (Vulkan push constants, OpenCL kernel arguments). A pass traces
 // `pathCount` paths: path slot i is pixel (firstPixel + i) % pixels of sample
 // firstSample + (firstPixel + i) / pixels, so a pass may span several samples of a small
 // image while every slot of one pixel is accumulated in sample order.
 WP_STRUCT(PassConstants)
-  uvec4 pass;  // x: firstPixel, y: firstSample, z: pathCount, w: bounce
+  uint firstPixel;
+  uint firstSample;
+  uint pathCount;
+  uint bounce;  // of the extend, shade, advance or connect it is passed to
 WP_STRUCT_END(PassConstants)
 
 WP_END

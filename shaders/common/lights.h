@@ -5,26 +5,12 @@
 #ifndef WP_LIGHTS_H
 #define WP_LIGHTS_H
 
-#include "layout.h"
+#include "binding_table.h"
 #include "sampling.h"
 #include "surface.h"
 #include "texture.h"
 
 WP_BEGIN
-
-// The light buffer, and what a light sample reads to evaluate an emissive texture: the
-// triangles' texture coordinates and the textures.
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_LIGHT_BUFFER WP_GLOBAL_PTR(GpuLight) lights,
-#define WP_LIGHT_BUFFER_ARG lights,
-#define WP_LIGHT_TEXTURE_BUFFERS WP_GLOBAL_PTR(GpuTriangleShading) triangleShading, WP_TEXTURE_BUFFERS
-#define WP_LIGHT_TEXTURE_BUFFER_ARGS triangleShading, WP_TEXTURE_BUFFER_ARGS
-#else
-#define WP_LIGHT_BUFFER
-#define WP_LIGHT_BUFFER_ARG
-#define WP_LIGHT_TEXTURE_BUFFERS
-#define WP_LIGHT_TEXTURE_BUFFER_ARGS
-#endif
 
 WP_STRUCT(LightSample)
   vec3 direction;  // unit, from the shading point towards the sampled point
@@ -98,10 +84,10 @@ WP_FN vec3 emittedRadiance(vec3 emission, bool doubleSided, vec3 lightNormal, ve
 }
 
 // Index of the light chosen by u in [0, 1) from the alias table (GpuLight in layout.h).
-WP_FN uint selectLight(WP_LIGHT_BUFFER uint lightCount, float u) {
+WP_FN uint selectLight(WP_BUFFERS uint lightCount, float u) {
   float scaled = u * toFloat(lightCount);
   uint i = min(toUint(scaled), lightCount - 1u);
-  GpuLight candidate = WP_LIGHT(i);
+  GpuLight candidate = WP_LOAD(lights, i);
   return (scaled - toFloat(i)) < lightAliasThreshold(candidate) ? i : lightAlias(candidate);
 }
 
@@ -114,7 +100,7 @@ WP_FN float lightPdf(GpuLight light, float selection, float distanceSquared, flo
 
 // A point uniform on the area of `light`, seen from `position` (selection not included),
 // with the emission there: the emissive texture at the point's interpolated TEXCOORD_0.
-WP_FN LightSample sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFERS GpuLight light, vec3 position, vec2 u) {
+WP_FN LightSample sampleLightTriangle(WP_BUFFERS GpuLight light, vec3 position, vec2 u) {
   vec2 b = sampleUniformTriangle(u);
   vec3 e1 = triangleLightEdge1(light);
   vec3 e2 = triangleLightEdge2(light);
@@ -129,8 +115,8 @@ WP_FN LightSample sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFERS GpuLight light, v
   s.pdf = s.distance > 0.0f ? areaToSolidAnglePdf(1.0f / triangleLightArea(light), distanceSquared, cosAtLight) : 0.0f;
   vec3 emission = lightEmission(light);
   if (triangleLightTexture(light) != WP_INVALID) {
-    GpuTriangleShading shading = WP_TRIANGLE_SHADING(triangleLightShading(light));
-    emission = texturedEmission(WP_TEXTURE_BUFFER_ARGS emission, triangleLightTexture(light), hasUv(shading),
+    GpuTriangleShading shading = WP_LOAD(triangleShading, triangleLightShading(light));
+    emission = texturedEmission(WP_BUFFERS_ARG emission, triangleLightTexture(light), hasUv(shading),
                                 uvAt(shading, b));
   }
   s.radiance = emittedRadiance(emission, lightIsDoubleSided(light), n, -s.direction);
@@ -207,22 +193,22 @@ WP_FN float solidAngleWeight(GpuLight light, vec3 position, float time) {
   return triangleSolidAngle(a, a + e1, a + e2) * lightSelectionWeight(light);
 }
 
-WP_FN float solidAngleWeightSum(WP_LIGHT_BUFFER uint lightCount, vec3 position, float time) {
+WP_FN float solidAngleWeightSum(WP_BUFFERS uint lightCount, vec3 position, float time) {
   float sum = 0.0f;
   for (uint i = 0u; i < lightCount; ++i) {
-    sum += solidAngleWeight(WP_LIGHT(i), position, time);
+    sum += solidAngleWeight(WP_LOAD(lights, i), position, time);
   }
   return sum;
 }
 
 // Probability that `light` is selected from `position` at shutter time `time` under
 // `selection` (WP_LIGHT_SELECTION_*).
-WP_FN float lightSelectionProbability(WP_LIGHT_BUFFER uint lightCount, uint selection, GpuLight light,
+WP_FN float lightSelectionProbability(WP_BUFFERS uint lightCount, uint selection, GpuLight light,
                                       vec3 position, float time) {
   if (selection != WP_LIGHT_SELECTION_SOLID_ANGLE) {
     return lightPowerProbability(light);
   }
-  float sum = solidAngleWeightSum(WP_LIGHT_BUFFER_ARG lightCount, position, time);
+  float sum = solidAngleWeightSum(WP_BUFFERS_ARG lightCount, position, time);
   return sum > 0.0f ? solidAngleWeight(light, position, time) / sum : 0.0f;
 }
 
@@ -234,15 +220,15 @@ WP_STRUCT_END(LightChoice)
 // The light that u in [0, 1) picks with probability proportional to solidAngleWeight: the
 // last light with a positive weight whose running sum so far is at most u * sum, i.e.
 // whose interval of the sum holds u * sum (rounding above the sum falls to the last one).
-WP_FN LightChoice selectLightBySolidAngle(WP_LIGHT_BUFFER uint lightCount, vec3 position, float time, float u) {
-  float sum = solidAngleWeightSum(WP_LIGHT_BUFFER_ARG lightCount, position, time);
+WP_FN LightChoice selectLightBySolidAngle(WP_BUFFERS uint lightCount, vec3 position, float time, float u) {
+  float sum = solidAngleWeightSum(WP_BUFFERS_ARG lightCount, position, time);
   float target = u * sum;
   LightChoice choice;
   choice.index = WP_INVALID;
   choice.probability = 0.0f;
   float running = 0.0f;
   for (uint i = 0u; i < lightCount; ++i) {
-    float w = solidAngleWeight(WP_LIGHT(i), position, time);
+    float w = solidAngleWeight(WP_LOAD(lights, i), position, time);
     if (w > 0.0f && running <= target) {
       choice.index = i;
       choice.probability = w / sum;
@@ -255,21 +241,21 @@ WP_FN LightChoice selectLightBySolidAngle(WP_LIGHT_BUFFER uint lightCount, vec3 
 // Chooses a light (by power through the alias table, or by solid angle) and a point on it,
 // as seen from `position` at shutter time `time`: u.x selects, (u.y, u.z) place the point on
 // a triangle.
-WP_FN LightSample sampleLight(WP_LIGHT_BUFFER WP_LIGHT_TEXTURE_BUFFERS uint lightCount, uint selection, vec3 position,
+WP_FN LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection, vec3 position,
                               float time, vec3 u) {
   LightChoice choice;
   if (selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {
-    choice = selectLightBySolidAngle(WP_LIGHT_BUFFER_ARG lightCount, position, time, u.x);
+    choice = selectLightBySolidAngle(WP_BUFFERS_ARG lightCount, position, time, u.x);
   } else {
-    choice.index = selectLight(WP_LIGHT_BUFFER_ARG lightCount, u.x);
-    choice.probability = lightPowerProbability(WP_LIGHT(choice.index));
+    choice.index = selectLight(WP_BUFFERS_ARG lightCount, u.x);
+    choice.probability = lightPowerProbability(WP_LOAD(lights, choice.index));
   }
   if (choice.index == WP_INVALID) {
     return noLightSample();
   }
-  GpuLight light = WP_LIGHT(choice.index);
+  GpuLight light = WP_LOAD(lights, choice.index);
   LightSample s = lightKind(light) == WP_LIGHT_TRIANGLE
-                      ? sampleLightTriangle(WP_LIGHT_TEXTURE_BUFFER_ARGS light, position, make_vec2(u.y, u.z))
+                      ? sampleLightTriangle(WP_BUFFERS_ARG light, position, make_vec2(u.y, u.z))
                       : samplePunctualLight(light, position, time);
   s.pdf *= choice.probability;
   return s;

@@ -3,15 +3,9 @@
 #ifndef WP_MOTION_H
 #define WP_MOTION_H
 
-#include "layout.h"
+#include "binding_table.h"
+#include "instance.h"
 
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_INSTANCE_BUFFER WP_GLOBAL_PTR(GpuInstance) instances,
-#define WP_INSTANCE_BUFFER_ARG instances,
-#else
-#define WP_INSTANCE_BUFFER
-#define WP_INSTANCE_BUFFER_ARG
-#endif
 
 WP_BEGIN
 
@@ -51,33 +45,29 @@ WP_FN AffineRows trsRows(vec3 t, vec4 q, vec3 s) {
 // and close (layout.h, GpuInstance of a motion key): translation and scale linear, rotation
 // by slerp; keys of a transform with shear hold matrix rows, lerped component-wise.
 WP_FN AffineRows objectToWorldAt(GpuInstance open, GpuInstance close, float u) {
-  if (open.info.x == WP_MOTION_KEY_MATRIX) {
+  if (motionKeyKind(open) == WP_MOTION_KEY_MATRIX) {
     AffineRows m;
-    m.row0 = open.worldToObject0 + (close.worldToObject0 - open.worldToObject0) * u;
-    m.row1 = open.worldToObject1 + (close.worldToObject1 - open.worldToObject1) * u;
-    m.row2 = open.worldToObject2 + (close.worldToObject2 - open.worldToObject2) * u;
+    m.row0 = motionKeyRow0(open) + (motionKeyRow0(close) - motionKeyRow0(open)) * u;
+    m.row1 = motionKeyRow1(open) + (motionKeyRow1(close) - motionKeyRow1(open)) * u;
+    m.row2 = motionKeyRow2(open) + (motionKeyRow2(close) - motionKeyRow2(open)) * u;
     return m;
   }
-  vec4 t = open.worldToObject0 + (close.worldToObject0 - open.worldToObject0) * u;
-  vec4 s = open.worldToObject2 + (close.worldToObject2 - open.worldToObject2) * u;
-  return trsRows(make_vec3(t.x, t.y, t.z), slerpQuaternion(open.worldToObject1, close.worldToObject1, u),
+  vec4 t = motionKeyTranslation(open) + (motionKeyTranslation(close) - motionKeyTranslation(open)) * u;
+  vec4 s = motionKeyScale(open) + (motionKeyScale(close) - motionKeyScale(open)) * u;
+  return trsRows(make_vec3(t.x, t.y, t.z), slerpQuaternion(motionKeyRotation(open), motionKeyRotation(close), u),
                  make_vec3(s.x, s.y, s.z));
 }
 
 // The instance record `inst` with its world-to-object rows replaced by the inverse of `m`
 // (the 3x3 part by cofactors over the determinant, then the translation).
 WP_FN GpuInstance instanceWithTransform(GpuInstance inst, AffineRows m) {
-  vec3 r0 = make_vec3(m.row0.x, m.row0.y, m.row0.z);
-  vec3 r1 = make_vec3(m.row1.x, m.row1.y, m.row1.z);
-  vec3 r2 = make_vec3(m.row2.x, m.row2.y, m.row2.z);
-  vec3 c0 = cross(r1, r2);
-  vec3 c1 = cross(r2, r0);
-  vec3 c2 = cross(r0, r1);
-  float invDet = 1.0f / dot(r0, c0);
+  Cofactors c = cofactorsOfRows(make_vec3(m.row0.x, m.row0.y, m.row0.z), make_vec3(m.row1.x, m.row1.y, m.row1.z),
+                                 make_vec3(m.row2.x, m.row2.y, m.row2.z));
+  float invDet = 1.0f / c.determinant;
   // The inverse's columns are c0, c1, c2 over the determinant; its rows are read across them.
-  vec3 i0 = make_vec3(c0.x, c1.x, c2.x) * invDet;
-  vec3 i1 = make_vec3(c0.y, c1.y, c2.y) * invDet;
-  vec3 i2 = make_vec3(c0.z, c1.z, c2.z) * invDet;
+  vec3 i0 = make_vec3(c.c0.x, c.c1.x, c.c2.x) * invDet;
+  vec3 i1 = make_vec3(c.c0.y, c.c1.y, c.c2.y) * invDet;
+  vec3 i2 = make_vec3(c.c0.z, c.c1.z, c.c2.z) * invDet;
   vec3 t = make_vec3(m.row0.w, m.row1.w, m.row2.w);
   inst.worldToObject0 = make_vec4(i0.x, i0.y, i0.z, -dot(i0, t));
   inst.worldToObject1 = make_vec4(i1.x, i1.y, i1.z, -dot(i1, t));
@@ -89,13 +79,14 @@ WP_FN GpuInstance instanceWithTransform(GpuInstance inst, AffineRows m) {
 // (the static path reads nothing more), else the record with the interpolated transform.
 // Only builds with WP_MOTION_BLUR defined look at the keys: the backends compile the stages
 // that call this twice and run the build without it where nothing moves, because the branch,
-// untaken but inside the traversal loop, cost still scenes 12% on lavapipe (README, Motion
-// blur). The host code (C++) always has it.
-WP_FN GpuInstance instanceAt(WP_INSTANCE_BUFFER uint i, float u) {
-  GpuInstance inst = WP_INSTANCE(i);
+// untaken but inside the traversal loop, cost still scenes 12% on lavapipe
+// (docs/motion-blur.md). The host code (C++) always has it.
+WP_FN GpuInstance instanceAt(WP_BUFFERS uint i, float u) {
+  GpuInstance inst = WP_LOAD(instances, i);
 #ifdef WP_MOTION_BLUR
-  if (inst.info.w != WP_INVALID) {
-    inst = instanceWithTransform(inst, objectToWorldAt(WP_INSTANCE(inst.info.w), WP_INSTANCE(inst.info.w + 1u), u));
+  uint keys = instanceMotionKeys(inst);
+  if (keys != WP_INVALID) {
+    inst = instanceWithTransform(inst, objectToWorldAt(WP_LOAD(instances, keys), WP_LOAD(instances, keys + 1u), u));
   }
 #endif
   return inst;

@@ -19,15 +19,23 @@ typedef uint4 uvec4;
 #define WP_FLOAT_TABLE(name, size) __constant float name[size] = {
 #define WP_FLOAT_TABLE_END };
 #define WP_GLOBAL_PTR(type) __global const type*
+#define WP_GLOBAL_MUTABLE_PTR(type) __global type*
 
 #define make_vec2(x, y) ((float2)((x), (y)))
 #define make_vec3(x, y, z) ((float3)((x), (y), (z)))
 #define make_vec4(x, y, z, w) ((float4)((x), (y), (z), (w)))
 #define make_uvec4(x, y, z, w) ((uint4)((x), (y), (z), (w)))
 #define toFloat(x) ((float)(x))
+#define notANumber(x) isnan(x)
 #define toUint(x) ((uint)(x))
 #define toInt(x) ((int)(x))
 #define asFloat(x) as_float(x)
 #define asUint(x) as_uint(x)
+// Atomic add on a buffer element, returning the value before.
+#define WP_ATOMIC_ADD(element, n) atomic_add(&(element), n)
+// Adds a vec3 to the xyz of a vec4 (for a buffer element, a write of three components).
+#define WP_ADD_XYZ(element, v) (element).xyz += (v)
+// The xyz of a vec4 (for a buffer element, a read of three components).
+#define WP_XYZ(v) (v).xyz
 
 #endif

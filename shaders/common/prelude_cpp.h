@@ -2,6 +2,7 @@
 #ifndef WP_PRELUDE_CPP_H
 #define WP_PRELUDE_CPP_H
 
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -31,13 +32,21 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_FLOAT_TABLE_END };
 // Pointer to device-global memory in function parameters (GLSL reads buffers as globals).
 #define WP_GLOBAL_PTR(type) const type*
+#define WP_GLOBAL_MUTABLE_PTR(type) type*
 
 #define make_vec2(x, y) vec2((x), (y))
 #define make_vec3(x, y, z) vec3((x), (y), (z))
 #define make_vec4(x, y, z, w) vec4((x), (y), (z), (w))
 #define make_uvec4(x, y, z, w) uvec4((x), (y), (z), (w))
 #define toFloat(x) static_cast<float>(x)
+inline bool notANumber(float x) { return std::isnan(x); }
 #define toUint(x) static_cast<uint>(x)
 #define toInt(x) static_cast<int>(x)
+// Atomic add on a buffer element, returning the value before.
+#define WP_ATOMIC_ADD(element, n) std::atomic_ref<uint>(element).fetch_add(n)
+// Adds a vec3 to the xyz of a vec4.
+#define WP_ADD_XYZ(element, v) (element) += vec4((v), 0.0f)
+// The xyz of a vec4.
+#define WP_XYZ(v) vec3(v)
 
 #endif

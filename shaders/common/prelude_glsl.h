@@ -19,10 +19,17 @@
 #define make_vec4(x, y, z, w) vec4((x), (y), (z), (w))
 #define make_uvec4(x, y, z, w) uvec4((x), (y), (z), (w))
 #define toFloat(x) float(x)
+#define notANumber(x) isnan(x)
 #define toUint(x) uint(x)
 #define toInt(x) int(x)
 #define asFloat(x) uintBitsToFloat(x)
 #define asUint(x) floatBitsToUint(x)
+// Atomic add on a buffer element, returning the value before.
+#define WP_ATOMIC_ADD(element, n) atomicAdd(element, n)
+// Adds a vec3 to the xyz of a vec4 (for a buffer element, a write of three components).
+#define WP_ADD_XYZ(element, v) (element).xyz += (v)
+// The xyz of a vec4 (for a buffer element, a read of three components).
+#define WP_XYZ(v) (v).xyz
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

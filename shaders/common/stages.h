@@ -1,53 +1,26 @@
-// What each wavefront stage computes, apart from reading and writing its buffers: written
-// once for the Vulkan (.comp) and OpenCL (.cl) kernels, so both backends trace the same
-// paths from the same random numbers and keep their queues the same way.
+// What each wavefront stage computes for one work item, written once for the Vulkan (.comp)
+// and OpenCL (.cl) kernels, so both backends trace the same paths from the same random
+// numbers and keep their queues (queues.h) the same way. The kernels only add what their
+// language does differently: the appends of shade, counted per subgroup or work-group.
 #ifndef WP_STAGES_H
 #define WP_STAGES_H
 
+#include "accumulation.h"
+#include "binding_table.h"
 #include "integrator.h"
-#include "layout.h"
+#include "queues.h"
 #include "rng.h"
 #include "thin_lens.h"
 #include "traverse.h"
 
 WP_BEGIN
 
-// Workgroups that cover `invocations` invocations.
-WP_FN uint dispatchGroups(uint invocations) { return (invocations + WP_WORKGROUP_SIZE - 1u) / WP_WORKGROUP_SIZE; }
-
-// Queue 0 of bounce 0 holds the pass's camera rays (written by generate); every other queue
-// and the ray totals start empty. The dispatch words are VkDispatchIndirectCommands.
-WP_FN QueueCounters passStartCounters(uint pathCount) {
-  QueueCounters c;
-  c.counts = make_uvec4(pathCount, 0u, 0u, 0u);
-  c.totals = make_uvec4(0u, 0u, 0u, 0u);
-  c.extendDispatch = make_uvec4(dispatchGroups(pathCount), 1u, 1u, 0u);
-  c.connectDispatch = make_uvec4(0u, 1u, 1u, 0u);
-  return c;
-}
-
-// After shade of the bounce whose rays are in `queue` (its parity): adds the rays it traced
-// and the shadow rays it spawned to the totals, sizes connect (this bounce's shadow rays)
-// and the next bounce's extend and shade, and empties the queues their next writers append
-// to: the ray queue just consumed, and the shadow queue of the next bounce.
-WP_FN QueueCounters advanceCounters(QueueCounters c, uint queue) {
-  uint traced = queue == 0u ? c.counts.x : c.counts.y;
-  uint nextRays = queue == 0u ? c.counts.y : c.counts.x;
-  uint shadows = queue == 0u ? c.counts.z : c.counts.w;
-  c.totals.x += traced;
-  c.totals.y += shadows;
-  c.extendDispatch.x = dispatchGroups(nextRays);
-  c.connectDispatch.x = dispatchGroups(shadows);
-  c.counts = queue == 0u ? make_uvec4(0u, nextRays, shadows, 0u) : make_uvec4(nextRays, 0u, 0u, shadows);
-  return c;
-}
-
 // The image pixel (row-major over the whole image) of pixel `regionPixel` of the region
 // traced (row-major over the region).
 WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
-  uint column = params.region.x + regionPixel % params.region.z;
-  uint row = params.region.y + regionPixel / params.region.z;
-  return row * params.image.x + column;
+  uint column = params.regionX + regionPixel % params.regionWidth;
+  uint row = params.regionY + regionPixel / params.regionWidth;
+  return row * params.width + column;
 }
 
 // The camera ray of path slot `slot` of the pass `pc`: slot i is pixel (firstPixel + i) %
@@ -57,12 +30,12 @@ WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
 // random stream seeded from (image pixel, sample, seed): a pixel's paths are the same
 // whichever region or batch of samples traces them.
 WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
-  uint pixels = params.image.z;
-  uint linear = pc.pass.x + slot;
+  uint pixels = params.pixelCount;
+  uint linear = pc.firstPixel + slot;
   uint pixel = imagePixel(params, linear % pixels);
-  uint sampleIndex = pc.pass.y + linear / pixels;
+  uint sampleIndex = pc.firstSample + linear / pixels;
 
-  uint rng = rngSeed(pixel, sampleIndex, params.image.w);
+  uint rng = rngSeed(pixel, sampleIndex, params.seed);
   float time = rngTime(rng);
   rng = rngNext(rng);
   float jx = rngFloat(rng);
@@ -72,40 +45,120 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   float lensU = rngFloat(rng);
   rng = rngNext(rng);
   float lensV = rngFloat(rng);
-  uint width = params.image.x;
+  uint width = params.width;
   vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
-  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.image.y, make_vec2(lensU, lensV));
-
-  PathRay ray;
-  ray.origin = make_vec4(camera.origin.x, camera.origin.y, camera.origin.z, asFloat(slot));
-  ray.direction = make_vec4(camera.direction.x, camera.direction.y, camera.direction.z, 0.0f);
-  ray.throughput = make_vec4(1.0f, 1.0f, 1.0f, time);
-  ray.state = make_uvec4(rng, 0u, 0u, 0u);
-  return ray;
+  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, make_vec2(lensU, lensV));
+  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u);
 }
 
-// The path slot a ray or shadow ray belongs to (kept in origin.w).
-WP_FN uint pathSlot(vec4 origin) { return asUint(origin.w); }
-
-// Extend: the closest hit of `ray`, as shade reads it.
-WP_FN HitRecord extendRay(WP_SCENE_BUFFERS RenderParams params, PathRay ray) {
-  Hit h = traceClosest(WP_SCENE_BUFFER_ARGS params.counts.y, params.counts.x, xyz(ray.origin), xyz(ray.direction),
-                       WP_FLT_MAX, ray.throughput.w);
-  HitRecord record;
-  record.hit = make_uvec4(h.instance == WP_INVALID ? WP_INVALID : asUint(h.t), h.instance, h.primitive, 0u);
-  return record;
+// The closest hit of `ray`, as shade reads it.
+WP_FN HitRecord extendRay(WP_BUFFERS RenderParams params, PathRay ray) {
+  Hit h = traceClosest(WP_BUFFERS_ARG params.tlasRoot, params.planeCount, rayOrigin(ray), rayDirection(ray),
+                       WP_FLT_MAX, rayTime(ray));
+  return makeHitRecord(h.t, h.instance, h.primitive);
 }
 
-// Shade: the vertex `ray` reached (or the sky it left to), from its hit record.
-WP_FN ShadeResult shadePath(WP_SHADING_BUFFERS RenderParams params, PathRay ray, uvec4 hit) {
-  return hit.x == WP_INVALID ? shadeMiss(WP_SHADING_BUFFER_ARGS params, ray)
-                             : shadeHit(WP_SHADING_BUFFER_ARGS params, ray, asFloat(hit.x), hit.y, hit.z);
+// The vertex `ray` reached (or the sky it left to), from its hit record.
+WP_FN ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, HitRecord hit) {
+  if (hitIsMiss(hit)) {
+    return shadeMiss(WP_BUFFERS_ARG params, ray);
+  }
+  return shadeHit(WP_BUFFERS_ARG params, ray, hitDistance(hit), hitInstanceField(hit), hitPrimitive(hit));
 }
 
-// Connect: whether nothing blocks the shadow ray before its light sample.
-WP_FN bool shadowRayUnoccluded(WP_SCENE_BUFFERS RenderParams params, ShadowRay s) {
-  return !traceAny(WP_SCENE_BUFFER_ARGS params.counts.y, params.counts.x, xyz(s.origin), xyz(s.direction),
-                   s.direction.w, s.contribution.w);
+// Whether nothing blocks the shadow ray before its light sample.
+WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
+  return !traceAny(WP_BUFFERS_ARG params.tlasRoot, params.planeCount, shadowRayOrigin(s), shadowRayDirection(s),
+                   shadowRayLength(s), shadowRayTime(s));
+}
+
+// Adds to the radiance of the path in `slot` (its rgb only: on lavapipe every component
+// written is a scalar store per lane).
+WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_BUFFER(pathRadiance)[slot], radiance); }
+
+// Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue,
+// and the path's radiance cleared; the first work item also starts the pass's queues.
+WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
+  uint pathCount = pc.pathCount;
+  uint maxPaths = params.maxPaths;
+  if (slot == 0u) {
+    startPassQueues(WP_BUFFERS_ARG pathCount, maxPaths);
+  }
+  if (slot >= pathCount) {
+    return;
+  }
+  WP_BUFFER(rays)[queueEntry(rayQueue(0u, maxPaths), slot)] = cameraPathRay(params, pc, slot);
+  WP_BUFFER(pathRadiance)[slot] = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
+}
+
+// Extend, work item `i`: the closest hit of entry i of the bounce's ray queue, into hits[i].
+WP_FN void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+  WorkQueue queue = rayQueue(pc.bounce, params.maxPaths);
+  if (i >= queueSize(WP_BUFFERS_ARG queue)) {
+    return;
+  }
+  WP_BUFFER(hits)[i] = extendRay(WP_BUFFERS_ARG params, WP_LOAD(rays, queueEntry(queue, i)));
+}
+
+// Shade, work item `i` (below the size of the bounce's ray queue): the vertex that entry i
+// reached, its radiance added to the path. The kernel appends the continuation and the
+// shadow ray the result holds to continuationQueue and shadowQueue.
+WP_FN ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+  PathRay ray = WP_LOAD(rays, queueEntry(rayQueue(pc.bounce, params.maxPaths), i));
+  ShadeResult r = shadePath(WP_BUFFERS_ARG params, ray, WP_LOAD(hits, i));
+  if (r.radiance.x != 0.0f || r.radiance.y != 0.0f || r.radiance.z != 0.0f) {
+    addPathRadiance(WP_BUFFERS_ARG rayPathSlot(ray), r.radiance);
+  }
+  return r;
+}
+
+// The queue that shade of pc.bounce appends the paths' continuations to: the next bounce's.
+WP_FN WorkQueue continuationQueue(RenderParams params, PassConstants pc) {
+  return rayQueue(pc.bounce + 1u, params.maxPaths);
+}
+
+// Advance, one work item: the queue sizes of `pc`'s bounce turned into the next stages'
+// dispatch arguments (advanceQueues), so the pass needs no readback.
+WP_FN void advanceStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+  // The dispatch is one workgroup; a single work item must do the read-modify-writes.
+  if (i == 0u) {
+    advanceQueues(WP_BUFFERS_ARG pc.bounce, params.maxPaths);
+  }
+}
+
+// Connect, work item `i`: the shadow ray at entry i of the bounce's shadow queue adds its
+// light sample to its path unless something blocks it.
+WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+  WorkQueue queue = shadowQueue(pc.bounce);
+  if (i >= queueSize(WP_BUFFERS_ARG queue)) {
+    return;
+  }
+  ShadowRay s = WP_LOAD(shadowRays, queueEntry(queue, i));
+  if (shadowRayUnoccluded(WP_BUFFERS_ARG params, s)) {
+    addPathRadiance(WP_BUFFERS_ARG shadowRayPathSlot(s), shadowRayContribution(s));
+  }
+}
+
+// Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance
+// and its square to the pixel's running sums (the squares give the per-pixel variance). It
+// walks the pixel's slots in sample order, so there are no races and the sum order is fixed.
+WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
+  uint pixels = params.pixelCount;
+  uint pathCount = pc.pathCount;
+  if (t >= min(pathCount, pixels)) {
+    return;
+  }
+  uint pixel = (pc.firstPixel + t) % pixels;
+  vec4 sum = WP_LOAD(accumulation, pixel);
+  vec4 sumSquares = WP_LOAD(accumulation, pixels + pixel);
+  for (uint slot = t; slot < pathCount; slot += pixels) {
+    // Only the rgb is read: on lavapipe every component is a scalar load per lane.
+    vec3 l = accumulableRadiance(WP_XYZ(WP_BUFFER(pathRadiance)[slot]));
+    WP_ADD_XYZ(sum, l);
+    WP_ADD_XYZ(sumSquares, l * l);
+  }
+  WP_BUFFER(accumulation)[pixel] = sum;
+  WP_BUFFER(accumulation)[pixels + pixel] = sumSquares;
 }
 
 WP_END

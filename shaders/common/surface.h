@@ -3,18 +3,12 @@
 #ifndef WP_SURFACE_H
 #define WP_SURFACE_H
 
-#include "layout.h"
+#include "binding_table.h"
+#include "instance.h"
 #include "motion.h"
 
 WP_BEGIN
 
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SURFACE_BUFFERS WP_GLOBAL_PTR(GpuTriangle) triangles, WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes, WP_GLOBAL_PTR(GpuTriangleShading) triangleShading,
-#define WP_SURFACE_BUFFER_ARGS triangles, instances, planes, triangleShading,
-#else
-#define WP_SURFACE_BUFFERS
-#define WP_SURFACE_BUFFER_ARGS
-#endif
 
 WP_STRUCT(SurfaceHit)
   vec3 position;
@@ -31,31 +25,6 @@ WP_STRUCT(SurfaceHit)
   uint light;     // index into the light buffer, WP_INVALID if not a sampled light
 WP_STRUCT_END(SurfaceHit)
 
-// Transforms an object-space normal to world space with the inverse transpose, which for a
-// world-to-object matrix M is transpose(M).
-WP_FN vec3 normalToWorld(GpuInstance inst, vec3 n) {
-  vec3 r0 = make_vec3(inst.worldToObject0.x, inst.worldToObject0.y, inst.worldToObject0.z);
-  vec3 r1 = make_vec3(inst.worldToObject1.x, inst.worldToObject1.y, inst.worldToObject1.z);
-  vec3 r2 = make_vec3(inst.worldToObject2.x, inst.worldToObject2.y, inst.worldToObject2.z);
-  return normalize(r0 * n.x + r1 * n.y + r2 * n.z);
-}
-
-// Transforms an object-space direction to world space, unit length: the inverse of the
-// world-to-object matrix M applied to d, as the cofactor columns over det(M).
-WP_FN vec3 objectToWorldDirection(GpuInstance inst, vec3 d) {
-  vec3 r0 = make_vec3(inst.worldToObject0.x, inst.worldToObject0.y, inst.worldToObject0.z);
-  vec3 r1 = make_vec3(inst.worldToObject1.x, inst.worldToObject1.y, inst.worldToObject1.z);
-  vec3 r2 = make_vec3(inst.worldToObject2.x, inst.worldToObject2.y, inst.worldToObject2.z);
-  vec3 c0 = cross(r1, r2);
-  vec3 w = (c0 * d.x + cross(r2, r0) * d.y + cross(r0, r1) * d.z) / dot(r0, c0);
-  return normalize(w);
-}
-
-WP_FN vec3 pointToObject(GpuInstance inst, vec3 p) {
-  vec4 q = make_vec4(p.x, p.y, p.z, 1.0f);
-  return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
-}
-
 // Four bytes (r in the low one) as values in [0, 1].
 WP_FN vec4 unpackUnorm8(uint word) {
   return make_vec4(toFloat(word & 255u), toFloat((word >> 8u) & 255u), toFloat((word >> 16u) & 255u),
@@ -66,9 +35,9 @@ WP_FN vec4 unpackUnorm8(uint word) {
 // Barycentrics (of vertices 1 and 2) of an object-space point on the triangle's plane,
 // recomputed here rather than carried from the traversal, which stays lean.
 WP_FN vec2 barycentricsAt(GpuTriangle tri, vec3 p) {
-  vec3 e1 = make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z);
-  vec3 e2 = make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z);
-  vec3 d = p - make_vec3(tri.v0.x, tri.v0.y, tri.v0.z);
+  vec3 e1 = triangleEdge1(tri);
+  vec3 e2 = triangleEdge2(tri);
+  vec3 d = p - triangleVertex0(tri);
   float d00 = dot(e1, e1);
   float d01 = dot(e1, e2);
   float d11 = dot(e2, e2);
@@ -84,15 +53,12 @@ WP_FN vec2 barycentricsAt(GpuTriangle tri, vec3 p) {
 // TEXCOORD_0 at barycentrics b (of vertices 1 and 2) of a triangle; hasUv(shading) says
 // whether the mesh has it.
 WP_FN vec2 uvAt(GpuTriangleShading shading, vec2 b) {
-  return make_vec2(shading.normal0.w, shading.v.x) * (1.0f - b.x - b.y) +
-         make_vec2(shading.normal1.w, shading.v.y) * b.x + make_vec2(shading.normal2.w, shading.v.z) * b.y;
+  return vertexUv0(shading) * (1.0f - b.x - b.y) + vertexUv1(shading) * b.x + vertexUv2(shading) * b.y;
 }
 
-WP_FN bool hasUv(GpuTriangleShading shading) { return shading.v.w != 0.0f; }
-
-// `instanceField` and `primitive` are HitRecord.hit.y and .z of a hit (not a miss) at the
+// `instanceField` and `primitive` are hitInstanceField and hitPrimitive of a hit at the
 // normalized shutter time `time` the ray was traced at (moving instances are placed then).
-WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
+WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
   SurfaceHit s;
   s.position = position;
   s.light = WP_INVALID;
@@ -102,51 +68,52 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
   s.tangent = make_vec3(1.0f, 0.0f, 0.0f);
   s.bitangent = make_vec3(0.0f, 1.0f, 0.0f);
   if ((instanceField & WP_HIT_PLANE) != 0u) {
-    GpuPlane plane = WP_PLANE(instanceField & ~WP_HIT_PLANE);
-    s.normal = make_vec3(plane.normalDistance.x, plane.normalDistance.y, plane.normalDistance.z);
+    GpuPlane plane = WP_LOAD(planes, instanceField & ~WP_HIT_PLANE);
+    s.normal = planeNormal(plane);
     s.shadingNormal = s.normal;
-    s.material = plane.info.x;
+    s.material = planeMaterial(plane);
     return s;
   }
-  GpuInstance inst = instanceAt(WP_INSTANCE_BUFFER_ARG instanceField, time);
-  if (inst.info.x == WP_INSTANCE_SPHERE) {
+  GpuInstance inst = instanceAt(WP_BUFFERS_ARG instanceField, time);
+  if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
     s.normal = normalToWorld(inst, pointToObject(inst, position));
     s.shadingNormal = s.normal;
-    s.material = inst.info.y;
+    s.material = instanceSphereMaterial(inst);
     return s;
   }
-  GpuTriangle tri = WP_TRIANGLE(primitive);
-  vec3 e1 = make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z);
-  vec3 e2 = make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z);
+  GpuTriangle tri = WP_LOAD(triangles, primitive);
+  vec3 e1 = triangleEdge1(tri);
+  vec3 e2 = triangleEdge2(tri);
   s.normal = normalToWorld(inst, cross(e1, e2));
   s.shadingNormal = s.normal;
-  GpuTriangleShading shading = WP_TRIANGLE_SHADING(primitive);
-  vec3 n0 = make_vec3(shading.normal0.x, shading.normal0.y, shading.normal0.z);
-  vec3 n1 = make_vec3(shading.normal1.x, shading.normal1.y, shading.normal1.z);
-  vec3 n2 = make_vec3(shading.normal2.x, shading.normal2.y, shading.normal2.z);
+  GpuTriangleShading shading = WP_LOAD(triangleShading, primitive);
   vec2 b = barycentricsAt(tri, pointToObject(inst, position));
-  vec3 n = n0 * (1.0f - b.x - b.y) + n1 * b.x + n2 * b.y;
+  vec3 n = vertexNormal0(shading) * (1.0f - b.x - b.y) + vertexNormal1(shading) * b.x + vertexNormal2(shading) * b.y;
   s.hasUv = hasUv(shading);
   s.uv = uvAt(shading, b);
-  s.color = unpackUnorm8(shading.colors.x) * (1.0f - b.x - b.y) + unpackUnorm8(shading.colors.y) * b.x +
-            unpackUnorm8(shading.colors.z) * b.y;
+  s.color = unpackUnorm8(vertexColor0(shading)) * (1.0f - b.x - b.y) + unpackUnorm8(vertexColor1(shading)) * b.x +
+            unpackUnorm8(vertexColor2(shading)) * b.y;
   // The file's TANGENT (glTF: bitangent = w cross(normal, tangent), in object space, so a
   // mirroring instance transform mirrors it along with the rest), else the triangle's uv
   // gradient: [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2].
-  vec4 t = shading.tangent0 * (1.0f - b.x - b.y) + shading.tangent1 * b.x + shading.tangent2 * b.y;
+  vec4 t = vertexTangent0(shading) * (1.0f - b.x - b.y) + vertexTangent1(shading) * b.x +
+           vertexTangent2(shading) * b.y;
   vec3 tangent = make_vec3(t.x, t.y, t.z);
   vec3 bitangent = cross(n, tangent) * (t.w < 0.0f ? -1.0f : 1.0f);
-  float du1 = shading.normal1.w - shading.normal0.w;
-  float du2 = shading.normal2.w - shading.normal0.w;
-  float dv1 = shading.v.y - shading.v.x;
-  float dv2 = shading.v.z - shading.v.x;
+  vec2 uv0 = vertexUv0(shading);
+  vec2 uv1 = vertexUv1(shading);
+  vec2 uv2 = vertexUv2(shading);
+  float du1 = uv1.x - uv0.x;
+  float du2 = uv2.x - uv0.x;
+  float dv1 = uv1.y - uv0.y;
+  float dv2 = uv2.y - uv0.y;
   float determinant = du1 * dv2 - du2 * dv1;
   if (dot(tangent, tangent) > 1e-12f && dot(bitangent, bitangent) > 1e-12f) {
-    s.tangent = objectToWorldDirection(inst, tangent);
-    s.bitangent = objectToWorldDirection(inst, bitangent);
+    s.tangent = directionToWorld(inst, tangent);
+    s.bitangent = directionToWorld(inst, bitangent);
   } else if (s.hasUv && determinant != 0.0f) {
-    s.tangent = objectToWorldDirection(inst, (e1 * dv2 - e2 * dv1) / determinant);
-    s.bitangent = -objectToWorldDirection(inst, (e2 * du1 - e1 * du2) / determinant);
+    s.tangent = directionToWorld(inst, (e1 * dv2 - e2 * dv1) / determinant);
+    s.bitangent = -directionToWorld(inst, (e2 * du1 - e1 * du2) / determinant);
   } else {
     s.tangent = make_vec3(0.0f, 0.0f, 0.0f);
     s.bitangent = make_vec3(0.0f, 0.0f, 0.0f);
@@ -156,8 +123,10 @@ WP_FN SurfaceHit surfaceAt(WP_SURFACE_BUFFERS uint instanceField, uint primitive
     vec3 world = normalToWorld(inst, n);
     s.shadingNormal = dot(world, s.normal) >= 0.0f ? world : -world;
   }
-  s.material = tri.info.x;
-  s.light = tri.info.y == WP_INVALID || inst.info.z == WP_INVALID ? WP_INVALID : inst.info.z + tri.info.y;
+  s.material = triangleMaterial(tri);
+  uint emitter = triangleEmitter(tri);
+  uint firstLight = instanceFirstLight(inst);
+  s.light = emitter == WP_INVALID || firstLight == WP_INVALID ? WP_INVALID : firstLight + emitter;
   return s;
 }
 

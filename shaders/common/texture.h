@@ -3,18 +3,11 @@
 #ifndef WP_TEXTURE_H
 #define WP_TEXTURE_H
 
-#include "layout.h"
+#include "binding_table.h"
 #include "surface.h"
 
 WP_BEGIN
 
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_TEXTURE_BUFFERS WP_GLOBAL_PTR(GpuTexture) textures, WP_GLOBAL_PTR(uint) texels,
-#define WP_TEXTURE_BUFFER_ARGS textures, texels,
-#else
-#define WP_TEXTURE_BUFFERS
-#define WP_TEXTURE_BUFFER_ARGS
-#endif
 
 // i mod size for any integer i, without the sign of % on negative numbers (undefined in GLSL).
 WP_FN int floorMod(int i, int size) { return i - size * toInt(floor(toFloat(i) / toFloat(size))); }
@@ -36,9 +29,9 @@ WP_FN float srgbToLinear(float c) {
 }
 
 // Texel (x, y), already wrapped, as linear RGBA in [0, 1].
-WP_FN vec4 texelAt(WP_TEXTURE_BUFFERS GpuTexture t, int x, int y) {
-  vec4 c = unpackUnorm8(WP_TEXEL_WORD(t.info.x + toUint(y) * t.info.y + toUint(x)));
-  if ((t.info.w & WP_TEXTURE_SRGB) != 0u) {
+WP_FN vec4 texelAt(WP_BUFFERS GpuTexture t, int x, int y) {
+  vec4 c = unpackUnorm8(WP_LOAD(texels, textureFirstTexel(t) + toUint(y) * textureWidth(t) + toUint(x)));
+  if (textureIsSrgb(t)) {
     c = make_vec4(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w);
   }
   return c;
@@ -46,16 +39,16 @@ WP_FN vec4 texelAt(WP_TEXTURE_BUFFERS GpuTexture t, int x, int y) {
 
 // The texture at uv (glTF: origin at the image's top-left, v down). Bilinear filtering
 // blends in linear space (after the sRGB decode), as GPUs do with sRGB formats.
-WP_FN vec4 sampleTexture(WP_TEXTURE_BUFFERS uint index, vec2 uv) {
-  GpuTexture t = WP_TEXTURE(index);
-  int width = toInt(t.info.y);
-  int height = toInt(t.info.z);
-  uint wrapS = t.info.w & 3u;
-  uint wrapT = (t.info.w >> 2u) & 3u;
+WP_FN vec4 sampleTexture(WP_BUFFERS uint index, vec2 uv) {
+  GpuTexture t = WP_LOAD(textures, index);
+  int width = toInt(textureWidth(t));
+  int height = toInt(textureHeight(t));
+  uint wrapS = textureWrapS(t);
+  uint wrapT = textureWrapT(t);
   float x = uv.x * toFloat(width);
   float y = uv.y * toFloat(height);
-  if ((t.info.w & WP_TEXTURE_NEAREST) != 0u) {
-    return texelAt(WP_TEXTURE_BUFFER_ARGS t, wrapTexel(toInt(floor(x)), width, wrapS),
+  if (textureIsNearest(t)) {
+    return texelAt(WP_BUFFERS_ARG t, wrapTexel(toInt(floor(x)), width, wrapS),
                    wrapTexel(toInt(floor(y)), height, wrapT));
   }
   // Texel centres sit at half-integer coordinates.
@@ -67,19 +60,19 @@ WP_FN vec4 sampleTexture(WP_TEXTURE_BUFFERS uint index, vec2 uv) {
   int x1 = wrapTexel(toInt(fx) + 1, width, wrapS);
   int y0 = wrapTexel(toInt(fy), height, wrapT);
   int y1 = wrapTexel(toInt(fy) + 1, height, wrapT);
-  vec4 top = texelAt(WP_TEXTURE_BUFFER_ARGS t, x0, y0) * (1.0f - ax) + texelAt(WP_TEXTURE_BUFFER_ARGS t, x1, y0) * ax;
-  vec4 bottom = texelAt(WP_TEXTURE_BUFFER_ARGS t, x0, y1) * (1.0f - ax) + texelAt(WP_TEXTURE_BUFFER_ARGS t, x1, y1) * ax;
+  vec4 top = texelAt(WP_BUFFERS_ARG t, x0, y0) * (1.0f - ax) + texelAt(WP_BUFFERS_ARG t, x1, y0) * ax;
+  vec4 bottom = texelAt(WP_BUFFERS_ARG t, x0, y1) * (1.0f - ax) + texelAt(WP_BUFFERS_ARG t, x1, y1) * ax;
   return top * (1.0f - ay) + bottom * ay;
 }
 
 // Emitted radiance `factor` (glTF: emissiveFactor times KHR_materials_emissive_strength)
 // times the emissive texture `index` at uv; the factor alone without a texture (WP_INVALID)
 // or without texture coordinates. Hits and light samples both take it from here, so they agree.
-WP_FN vec3 texturedEmission(WP_TEXTURE_BUFFERS vec3 factor, uint index, bool withUv, vec2 uv) {
+WP_FN vec3 texturedEmission(WP_BUFFERS vec3 factor, uint index, bool withUv, vec2 uv) {
   if (index == WP_INVALID || !withUv) {
     return factor;
   }
-  vec4 t = sampleTexture(WP_TEXTURE_BUFFER_ARGS index, uv);
+  vec4 t = sampleTexture(WP_BUFFERS_ARG index, uv);
   return factor * make_vec3(t.x, t.y, t.z);
 }
 

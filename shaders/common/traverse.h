@@ -1,29 +1,18 @@
 // Closest-hit and any-hit traversal of the two-level BVH: a top level over instances, one
-// bottom level per mesh, then the planes. Buffers are described in layout.h.
+// bottom level per mesh, then the planes. Buffers are described in binding_table.h.
 #ifndef WP_TRAVERSE_H
 #define WP_TRAVERSE_H
 
+#include "binding_table.h"
+#include "instance.h"
 #include "intersect.h"
-#include "layout.h"
 #include "motion.h"
 
-// Scene elements are read through WP_NODE(i) and friends (layout.h): C++ and OpenCL index the
-// arrays passed as the leading arguments, GLSL fetches from texel buffers it declares.
-#ifdef WP_BUFFERS_AS_ARGUMENTS
-#define WP_SCENE_BUFFERS                                                               \
-  WP_GLOBAL_PTR(BvhNode) nodes, WP_GLOBAL_PTR(GpuTriangle) triangles,                \
-      WP_GLOBAL_PTR(GpuInstance) instances, WP_GLOBAL_PTR(GpuPlane) planes,
-#define WP_SCENE_BUFFER_ARGS nodes, triangles, instances, planes,
-#else
-#define WP_SCENE_BUFFERS
-#define WP_SCENE_BUFFER_ARGS
-#endif
-
-// Each level is built no deeper than WP_BVH_MAX_DEPTH, and a traversal pushes at most one
+// Each level is built no deeper than WP_BVH_MAX_DEPTH, and its traversal pushes at most one
 // entry per level it descends (plus two while a bottom-level lane holds a postponed leaf),
-// so one stack of this size serves both levels.
+// so a stack of this size serves either level.
 #define WP_BVH_MAX_DEPTH 32u
-#define WP_TRAVERSAL_STACK_SIZE 68u
+#define WP_LEVEL_STACK_SIZE 34u
 // Bottom-level leaves hold at most this many triangles (the packer builds them so), which
 // lets the traversal test a leaf with a loop of fixed length.
 #define WP_MAX_LEAF_TRIANGLES 4u
@@ -47,12 +36,10 @@ WP_STRUCT(ChildHits)
 WP_STRUCT_END(ChildHits)
 
 WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
-  vec2 l = intersectAabb(make_vec3(node.leftMin.x, node.leftMin.y, node.leftMin.z),
-                         make_vec3(node.leftMax.x, node.leftMax.y, node.leftMax.z), origin, invDir, tMax);
-  vec2 r = intersectAabb(make_vec3(node.rightMin.x, node.rightMin.y, node.rightMin.z),
-                         make_vec3(node.rightMax.x, node.rightMax.y, node.rightMax.z), origin, invDir, tMax);
-  uint leftIndex = asUint(node.leftMin.w);
-  uint rightIndex = asUint(node.rightMin.w);
+  vec2 l = intersectAabb(nodeLeftMin(node), nodeLeftMax(node), origin, invDir, tMax);
+  vec2 r = intersectAabb(nodeRightMin(node), nodeRightMax(node), origin, invDir, tMax);
+  uint leftIndex = nodeLeftIndex(node);
+  uint rightIndex = nodeRightIndex(node);
   // Empty children are recognised by their index: the slab test would see their inverted
   // boxes as huge ones.
   bool hitLeft = l.x <= l.y && leftIndex != WP_INVALID;
@@ -60,21 +47,10 @@ WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float 
   bool rightFirst = hitRight && (!hitLeft || r.x < l.x);
   ChildHits c;
   c.children = rightFirst
-      ? make_uvec4(rightIndex, leftIndex, asUint(node.rightMax.w), asUint(node.leftMax.w))
-      : make_uvec4(leftIndex, rightIndex, asUint(node.leftMax.w), asUint(node.rightMax.w));
+      ? make_uvec4(rightIndex, leftIndex, nodeRightCount(node), nodeLeftCount(node))
+      : make_uvec4(leftIndex, rightIndex, nodeLeftCount(node), nodeRightCount(node));
   c.count = (hitLeft ? 1u : 0u) + (hitRight ? 1u : 0u);
   return c;
-}
-
-// World-to-object transform of a point and of a direction by an instance's 3x4 rows. The
-// direction keeps its length, so object-space t values equal world-space ones.
-WP_FN vec3 instanceRayOrigin(GpuInstance inst, vec3 p) {
-  vec4 q = make_vec4(p.x, p.y, p.z, 1.0f);
-  return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
-}
-WP_FN vec3 instanceRayDirection(GpuInstance inst, vec3 d) {
-  vec4 q = make_vec4(d.x, d.y, d.z, 0.0f);
-  return make_vec3(dot(inst.worldToObject0, q), dot(inst.worldToObject1, q), dot(inst.worldToObject2, q));
 }
 
 // A traversal stack entry: a node (count 0) or a leaf of `count` primitives at `index`.
@@ -82,27 +58,12 @@ WP_FN uint packEntry(uint index, uint count) { return index | (count << WP_ENTRY
 WP_FN uint entryIndex(uint entry) { return entry & WP_ENTRY_INDEX_MASK; }
 WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
 
-// Nearest hit at 0 < t < tMax, or with anyHit the first one found, with moving instances
-// placed at normalized shutter time `time` (motion.h).
-//
-// Each level is one flat loop over stack entries. An iteration either tests a node's two
-// children (the nearer becomes the next entry, the farther is pushed) or intersects one leaf
-// with a fixed-length loop over WP_MAX_LEAF_TRIANGLES triangles that the compiler unrolls.
-// Flat loops matter on SIMD implementations that run divergent branches under masks
-// (lavapipe, and GPUs): nested loops per child and per leaf made every lane pay for the
-// deepest nesting any lane reached, and a node visit cost as much as ten triangle tests.
-// The bottom level runs inside a top-level leaf and stacks its entries above the top
-// level's in the same stack.
-WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
-                     float tMax, float time, bool anyHit) {
-  Hit hit;
-  hit.t = tMax;
-  hit.instance = WP_INVALID;
-  hit.primitive = WP_INVALID;
-  // Planes first: a near plane shortens every box test that follows.
+// The planes that `hit` does not already hide, nearest first found; with anyHit it returns at
+// the first.
+WP_FN Hit intersectPlanes(WP_BUFFERS uint planeCount, vec3 origin, vec3 direction, Hit hit, bool anyHit) {
   for (uint i = 0u; i < planeCount; ++i) {
-    vec4 plane = WP_PLANE(i).normalDistance;
-    float t = intersectPlane(make_vec3(plane.x, plane.y, plane.z), plane.w, origin, direction, hit.t);
+    GpuPlane plane = WP_LOAD(planes, i);
+    float t = intersectPlane(planeNormal(plane), planeDistance(plane), origin, direction, hit.t);
     if (t < hit.t) {
       hit.t = t;
       hit.instance = i | WP_HIT_PLANE;
@@ -111,14 +72,144 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
       }
     }
   }
+  return hit;
+}
 
+// The triangles of a bottom-level leaf entry of `instance`, with the ray in object space: a
+// loop of fixed length WP_MAX_LEAF_TRIANGLES that the compiler unrolls (the slots past the
+// leaf's count test its first triangle again and are ignored).
+WP_FN Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit hit) {
+  uint first = entryIndex(leaf);
+  uint count = entryCount(leaf);
+  for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
+    uint j = first + (k < count ? k : 0u);
+    GpuTriangle tri = WP_LOAD(triangles, j);
+    float t = intersectTriangle(o, d, triangleVertex0(tri), triangleEdge1(tri), triangleEdge2(tri), hit.t);
+    if (k < count && t < hit.t) {
+      hit.t = t;
+      hit.instance = instance;
+      hit.primitive = j;
+    }
+  }
+  return hit;
+}
+
+// The bottom-level BVH at `root` of mesh instance `instance`, with the ray (o, d) in object
+// space; with anyHit it returns at the first hit. Interior nodes are walked until this lane
+// holds a leaf, and the leaf is postponed until every lane of the subgroup holds one, so
+// node visits and leaf tests run in separate SIMD iterations (Aila & Laine 2009,
+// "while-while" with postponed leaves).
+WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, Hit hit, bool anyHit) {
+  vec3 invDir = rayInverseDirection(d);
+  uint stack[WP_LEVEL_STACK_SIZE];
+  uint sp = 0u;
+  uint node = root;         // next interior node to visit, WP_INVALID: none
+  uint leaf = WP_INVALID;  // leaf entry waiting to be intersected
+  for (;;) {
+    while (node != WP_INVALID) {
+      ChildHits b = intersectChildren(WP_LOAD(nodes, node), o, invDir, hit.t);
+      uint nearEntry = packEntry(b.children.x, b.children.z);
+      if (b.count == 2u) {
+        stack[sp] = packEntry(b.children.y, b.children.w);
+        ++sp;
+      }
+      node = WP_INVALID;
+      if (b.count > 0u && b.children.z == 0u) {
+        node = b.children.x;
+      } else {
+        if (b.count > 0u && leaf == WP_INVALID) {
+          leaf = nearEntry;
+        } else if (b.count > 0u) {
+          // This lane already holds a leaf (it waits for the others): keep the new one.
+          stack[sp] = nearEntry;
+          ++sp;
+        }
+        if (sp > 0u) {
+          --sp;
+          uint popped = stack[sp];
+          if (entryCount(popped) == 0u) {
+            node = popped;
+          } else if (leaf == WP_INVALID) {
+            leaf = popped;
+          } else {
+            // Keep it for after the leaf in hand.
+            ++sp;
+          }
+        }
+      }
+      if (WP_SUBGROUP_ALL(leaf != WP_INVALID || node == WP_INVALID)) {
+        break;
+      }
+    }
+    if (leaf != WP_INVALID) {
+      hit = intersectLeaf(WP_BUFFERS_ARG leaf, instance, o, d, hit);
+      leaf = WP_INVALID;
+      if (anyHit && hit.instance != WP_INVALID) {
+        return hit;
+      }
+    }
+    if (node == WP_INVALID) {
+      if (sp == 0u) {
+        break;
+      }
+      --sp;
+      uint popped = stack[sp];
+      if (entryCount(popped) == 0u) {
+        node = popped;
+      } else {
+        leaf = popped;
+      }
+    }
+  }
+  return hit;
+}
+
+// Instance `i`, placed at normalized shutter time `time`: its unit sphere, or its mesh's
+// bottom level, with the ray taken to object space.
+WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, float time, Hit hit, bool anyHit) {
+  GpuInstance inst = instanceAt(WP_BUFFERS_ARG i, time);
+  vec3 o = pointToObject(inst, origin);
+  vec3 d = directionToObject(inst, direction);
+  if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
+    float t = intersectUnitSphere(o, d, hit.t);
+    if (t < hit.t) {
+      hit.t = t;
+      hit.instance = i;
+      hit.primitive = WP_INVALID;
+    }
+    return hit;
+  }
+  return traceBottomLevel(WP_BUFFERS_ARG instanceBvhRoot(inst), i, o, d, hit, anyHit);
+}
+
+// Nearest hit at 0 < t < tMax, or with anyHit the first one found, with moving instances
+// placed at normalized shutter time `time` (motion.h): the planes, then the top level.
+//
+// Each level is one flat loop over stack entries. An iteration either tests a node's two
+// children (the nearer becomes the next entry, the farther is pushed) or intersects one leaf
+// (for the top level an instance, intersectInstance; for a bottom level a few triangles,
+// intersectLeaf). Flat loops matter on SIMD implementations that run divergent branches
+// under masks (lavapipe, and GPUs): nested loops per child and per leaf made every lane pay
+// for the deepest nesting any lane reached, and a node visit cost as much as ten triangle
+// tests.
+WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
+                     float tMax, float time, bool anyHit) {
+  Hit hit;
+  hit.t = tMax;
+  hit.instance = WP_INVALID;
+  hit.primitive = WP_INVALID;
+  // Planes first: a near plane shortens every box test that follows.
+  hit = intersectPlanes(WP_BUFFERS_ARG planeCount, origin, direction, hit, anyHit);
+  if (anyHit && hit.instance != WP_INVALID) {
+    return hit;
+  }
   vec3 invDir = rayInverseDirection(direction);
-  uint stack[WP_TRAVERSAL_STACK_SIZE];
+  uint stack[WP_LEVEL_STACK_SIZE];
   uint sp = 0u;
   uint entry = packEntry(tlasRoot, 0u);
   for (;;) {
     if (entryCount(entry) == 0u) {
-      ChildHits c = intersectChildren(WP_NODE(entryIndex(entry)), origin, invDir, hit.t);
+      ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
       if (c.count == 2u) {
         stack[sp] = packEntry(c.children.y, c.children.w);
         ++sp;
@@ -129,95 +220,7 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
       }
     } else {
       // A top-level leaf holds one instance (GpuScene packs one per leaf).
-      uint i = entryIndex(entry);
-      GpuInstance inst = instanceAt(WP_INSTANCE_BUFFER_ARG i, time);
-      vec3 o = instanceRayOrigin(inst, origin);
-      vec3 d = instanceRayDirection(inst, direction);
-      if (inst.info.x == WP_INSTANCE_SPHERE) {
-        float t = intersectUnitSphere(o, d, hit.t);
-        if (t < hit.t) {
-          hit.t = t;
-          hit.instance = i;
-          hit.primitive = WP_INVALID;
-        }
-      } else {
-        vec3 objectInvDir = rayInverseDirection(d);
-        uint base = sp;
-        uint node = inst.info.y;  // next interior node to visit, WP_INVALID: none
-        uint leaf = WP_INVALID;   // leaf entry waiting to be intersected
-        for (;;) {
-          // Walk interior nodes until this lane holds a leaf, postponing it until every lane
-          // of the subgroup holds one, so that node visits and leaf tests run in separate
-          // SIMD iterations (Aila & Laine 2009, "while-while" with postponed leaves).
-          while (node != WP_INVALID) {
-            ChildHits b = intersectChildren(WP_NODE(node), o, objectInvDir, hit.t);
-            uint nearEntry = packEntry(b.children.x, b.children.z);
-            if (b.count == 2u) {
-              stack[sp] = packEntry(b.children.y, b.children.w);
-              ++sp;
-            }
-            node = WP_INVALID;
-            if (b.count > 0u && b.children.z == 0u) {
-              node = b.children.x;
-            } else {
-              if (b.count > 0u && leaf == WP_INVALID) {
-                leaf = nearEntry;
-              } else if (b.count > 0u) {
-                // This lane already holds a leaf (it waits for the others): keep the new one.
-                stack[sp] = nearEntry;
-                ++sp;
-              }
-              if (sp > base) {
-                --sp;
-                uint popped = stack[sp];
-                if (entryCount(popped) == 0u) {
-                  node = popped;
-                } else if (leaf == WP_INVALID) {
-                  leaf = popped;
-                } else {
-                  // Keep it for after the leaf in hand.
-                  ++sp;
-                }
-              }
-            }
-            if (WP_SUBGROUP_ALL(leaf != WP_INVALID || node == WP_INVALID)) {
-              break;
-            }
-          }
-          if (leaf != WP_INVALID) {
-            uint first = entryIndex(leaf);
-            uint count = entryCount(leaf);
-            for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
-              uint j = first + (k < count ? k : 0u);
-              GpuTriangle tri = WP_TRIANGLE(j);
-              float t = intersectTriangle(o, d, make_vec3(tri.v0.x, tri.v0.y, tri.v0.z),
-                                          make_vec3(tri.edge1.x, tri.edge1.y, tri.edge1.z),
-                                          make_vec3(tri.edge2.x, tri.edge2.y, tri.edge2.z), hit.t);
-              if (k < count && t < hit.t) {
-                hit.t = t;
-                hit.instance = i;
-                hit.primitive = j;
-              }
-            }
-            leaf = WP_INVALID;
-            if (anyHit && hit.instance != WP_INVALID) {
-              return hit;
-            }
-          }
-          if (node == WP_INVALID) {
-            if (sp == base) {
-              break;
-            }
-            --sp;
-            uint popped = stack[sp];
-            if (entryCount(popped) == 0u) {
-              node = popped;
-            } else {
-              leaf = popped;
-            }
-          }
-        }
-      }
+      hit = intersectInstance(WP_BUFFERS_ARG entryIndex(entry), origin, direction, time, hit, anyHit);
       if (anyHit && hit.instance != WP_INVALID) {
         return hit;
       }
@@ -234,15 +237,15 @@ WP_FN Hit traceScene(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origi
 // Closest hit at 0 < t < tMax at normalized shutter time `time` in [0, 1] (which only moving
 // instances see). Requires a non-zero direction and a scene packed by wp::packScene
 // (tlasRoot = GpuScene::tlasRoot, planeCount = its number of planes).
-WP_FN Hit traceClosest(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
+WP_FN Hit traceClosest(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
                        float time) {
-  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, time, false);
+  return traceScene(WP_BUFFERS_ARG tlasRoot, planeCount, origin, direction, tMax, time, false);
 }
 
 // Whether anything lies at 0 < t < tMax (shadow rays). Same requirements as traceClosest.
-WP_FN bool traceAny(WP_SCENE_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
+WP_FN bool traceAny(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
                     float time) {
-  return traceScene(WP_SCENE_BUFFER_ARGS tlasRoot, planeCount, origin, direction, tMax, time, true).instance !=
+  return traceScene(WP_BUFFERS_ARG tlasRoot, planeCount, origin, direction, tMax, time, true).instance !=
          WP_INVALID;
 }
 

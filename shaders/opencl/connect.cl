@@ -3,12 +3,6 @@
 #include "common/stages.h"
 
 WP_KERNEL void connect(WP_KERNEL_ARGS) {
-  uint i = get_global_id(0);
-  if (i >= counters[WP_COUNTER_SHADOW_RAYS + bounceParity(pc)]) {
-    return;
-  }
-  ShadowRay s = shadowRays[i];
-  if (shadowRayUnoccluded(WP_SCENE_BUFFER_ARGS *paramsBuffer, s)) {
-    pathRadiance[pathSlot(s.origin)].xyz += s.contribution.xyz;
-  }
+  WP_KERNEL_BUFFERS(buffers)
+  connectStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

@@ -3,11 +3,6 @@
 #include "common/stages.h"
 
 WP_KERNEL void extend(WP_KERNEL_ARGS) {
-  uint i = get_global_id(0);
-  uint queue = bounceParity(pc);
-  if (i >= counters[WP_COUNTER_RAYS + queue]) {
-    return;
-  }
-  RenderParams params = *paramsBuffer;
-  hits[i] = extendRay(WP_SCENE_BUFFER_ARGS params, rays[queue * params.counts.w + i]);
+  WP_KERNEL_BUFFERS(buffers)
+  extendStage(&buffers, *paramsBuffer, pc, get_global_id(0));
 }

@@ -1,4 +1,4 @@
-// Stage 3: shade each hit (shadePath in stages.h) and append continuations and shadow rays
+// Stage 3: shade each hit (shadeStage in stages.h) and append continuations and shadow rays
 // to the next queues through atomic counters, which compacts them.
 //
 // Appends are counted per work-group in __local counters, with one global atomic per queue
@@ -19,21 +19,16 @@ WP_KERNEL void shade(WP_KERNEL_ARGS) {
     rayCount = 0u;
     shadowCount = 0u;
   }
-  barrier(CLK_LOCAL_MEM_FENCE);
+  // Its barrier also orders the counts' reset before the appends.
+  WP_KERNEL_BUFFERS(buffers)
   uint i = get_global_id(0);
-  uint queue = bounceParity(pc);
-  uint next = 1u - queue;
   RenderParams params = *paramsBuffer;
-  uint maxPaths = params.counts.w;
+  WorkQueue continuations = continuationQueue(params, pc);
+  WorkQueue shadowRayQueue = shadowQueue(pc.bounce);
   ShadeResult r;
   r.flags = 0u;
-  if (i < counters[WP_COUNTER_RAYS + queue]) {
-    PathRay ray = rays[queue * maxPaths + i];
-    r = shadePath(WP_SHADING_BUFFER_ARGS params, ray, hits[i].hit);
-    uint slot = pathSlot(ray.origin);
-    if (any(r.radiance != (float3)(0.0f))) {
-      pathRadiance[slot].xyz += r.radiance;
-    }
+  if (i < queueSize(&buffers, rayQueue(pc.bounce, params.maxPaths))) {
+    r = shadeStage(&buffers, params, pc, i);
   }
   bool extends = (r.flags & WP_SHADE_EXTEND) != 0u;
   bool shadows = (r.flags & WP_SHADE_SHADOW) != 0u;
@@ -41,14 +36,14 @@ WP_KERNEL void shade(WP_KERNEL_ARGS) {
   uint k = shadows ? atomic_inc(&shadowCount) : 0u;
   barrier(CLK_LOCAL_MEM_FENCE);
   if (lid == 0u) {
-    rayBase = atomic_add(&counters[WP_COUNTER_RAYS + next], rayCount);
-    shadowBase = atomic_add(&counters[WP_COUNTER_SHADOW_RAYS + queue], shadowCount);
+    rayBase = reserveQueueEntries(&buffers, continuations, rayCount);
+    shadowBase = reserveQueueEntries(&buffers, shadowRayQueue, shadowCount);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (extends) {
-    rays[next * maxPaths + rayBase + j] = r.next;
+    rays[queueEntry(continuations, rayBase + j)] = r.next;
   }
   if (shadows) {
-    shadowRays[shadowBase + k] = r.shadow;
+    shadowRays[queueEntry(shadowRayQueue, shadowBase + k)] = r.shadow;
   }
 }

@@ -5,13 +5,4 @@
 #include "bindings.glsl"
 #include "common/stages.h"
 
-void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= counters[WP_COUNTER_SHADOW_RAYS + bounceParity()]) {
-    return;
-  }
-  ShadowRay s = loadShadowRay(i);
-  if (shadowRayUnoccluded(params, s)) {
-    pathRadiance[pathSlot(s.origin)].xyz += s.contribution.xyz;
-  }
-}
+void main() { connectStage(params, pc, gl_GlobalInvocationID.x); }

@@ -5,11 +5,4 @@
 #include "bindings.glsl"
 #include "common/stages.h"
 
-void main() {
-  uint i = gl_GlobalInvocationID.x;
-  uint queue = bounceParity();
-  if (i >= counters[WP_COUNTER_RAYS + queue]) {
-    return;
-  }
-  hits[i] = extendRay(params, loadRay(queue * params.counts.w + i));
-}
+void main() { extendStage(params, pc, gl_GlobalInvocationID.x); }

@@ -30,6 +30,9 @@ bool printVulkanDevices() {
     std::printf("  %zu: %s (%s), Vulkan %u.%u, %s, %.1f GiB device-local memory\n", i, d.name.c_str(), d.type.c_str(),
                 VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion), d.driver.c_str(),
                 gibibytes(d.deviceLocalBytes));
+    std::printf("     buffers: %s written (%s), %s read (maxMemoryAllocationSize), %u texels (maxTexelBufferElements)\n",
+                byteSize(d.limits.writable.bytes).c_str(), d.limits.writable.name.c_str(),
+                byteSize(d.limits.sceneArray.bytes).c_str(), d.maxTexelBufferElements);
   }
   return !devices.empty();
 }
@@ -50,9 +53,10 @@ bool printOpenClDevices() {
   for (size_t i = 0; i < devices.size(); ++i) {
     const OpenClDeviceInfo& d = devices[i];
     std::string missing = missingRequirement(d);
-    std::printf("  %zu: %s (%s) on %s, %u compute units, %.1f GiB global memory, driver %s%s\n", i, d.name.c_str(),
-                d.type.c_str(), d.platformName.c_str(), d.computeUnits, gibibytes(d.globalMemoryBytes),
-                d.driverVersion.c_str(), missing.empty() ? "" : ("; unusable: lacks " + missing).c_str());
+    std::printf("  %zu: %s (%s) on %s, %u compute units, %.1f GiB global memory, buffers up to %s, driver %s%s\n", i,
+                d.name.c_str(), d.type.c_str(), d.platformName.c_str(), d.computeUnits, gibibytes(d.globalMemoryBytes),
+                byteSize(d.maxAllocationBytes).c_str(), d.driverVersion.c_str(),
+                missing.empty() ? "" : ("; unusable: lacks " + missing).c_str());
   }
   return !devices.empty();
 }

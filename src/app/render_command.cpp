@@ -77,20 +77,6 @@ FrameRange framesToRender(const RenderOptions& o) {
   return range;
 }
 
-// A CLI11 check that a number is finite and, with `positive`, above 0 (CLI11's own range
-// checks let NaN through).
-CLI::Validator finiteNumber(bool positive) {
-  return CLI::Validator(
-      [positive](std::string& text) -> std::string {
-        double value = 0.0;
-        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || (positive && !(value > 0.0))) {
-          return "'" + text + "' is not a " + (positive ? "number above 0" : "finite number");
-        }
-        return "";
-      },
-      positive ? "POSITIVE" : "NUMBER");
-}
-
 // A render that displays almost all black (at least this share of its pixels 0 in every 8-bit
 // channel of its PNG) gets a note saying why that may be and which flags change it.
 constexpr double kAlmostBlackShare = 0.95;
@@ -132,6 +118,17 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   }
   applyCameraFlags(o.camera, scene.camera, gpuScene);
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
+  if (renderer.tileCount() > 1) {
+    if (!o.checkpoint.path.empty()) {
+      throw Error("the image does not fit " + backend.deviceName() + " at once and is rendered in " +
+                  std::to_string(renderer.tileCount()) +
+                  " tiles, which cannot be checkpointed; leave out --checkpoint, or render it in parts with "
+                  "--region and combine them with 'wavepath merge'");
+    }
+    note("the " + std::to_string(o.settings.width) + "x" + std::to_string(o.settings.height) + " image is rendered in " +
+         std::to_string(renderer.tileCount()) + " tiles, one after another: its accumulation does not fit " +
+         backend.deviceName() + " at once");
+  }
   Checkpoint here;
   here.identity = renderIdentity(gpuScene, makeRenderParams(scene, gpuScene, o.settings), o.settings);
   here.samplesPerPixel = o.settings.samplesPerPixel;
@@ -196,7 +193,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")
       ->check(parsedBy([](const std::string& text) { parseFrameRange(text); }, "A..B"))
       ->excludes(cmd->get_option("--time"));
-  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(finiteNumber(true));
+  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(CLI::PositiveNumber);
   cmd->add_option("--samples", o.samples,
                   "Render only samples A..B (inclusive, numbered from 0) of --spp: a batch of a frame split over "
                   "machines, to combine with 'wavepath merge'")
@@ -278,8 +275,7 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
                 "Vulkan: run with the Khronos validation layer (with synchronization validation); OpenCL: build the "
                 "kernels with warnings as errors and check the queue counters; fail on any error");
   addCameraFlags(*cmd, o.camera);
-  cmd->add_option("--time", o.time, "Pose the scene's animations at this time, in seconds (default: the rest pose)")
-      ->check(finiteNumber(false));
+  cmd->add_option("--time", o.time, "Pose the scene's animations at this time, in seconds (default: the rest pose)");
   cmd->add_option("--camera", o.cameraName,
                   "The file camera to look through: its index, or the name of the camera or of its node (default: "
                   "the first camera of the scene)");
@@ -292,7 +288,6 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
          "A constant sky of this linear RGB radiance, e.g. 0.05,0.05,0.05")
       ->delimiter(',')
       ->expected(3)
-      ->check(finiteNumber(false))
       ->check(CLI::Range(0.0f, 1e9f))
       ->excludes("--sky");
   cmd->add_option("--sky-intensity", o.skyIntensity, "Multiplier of the sky's radiance")->check(CLI::Range(0.0f, 1e9f));
@@ -323,6 +318,7 @@ Scene loadSceneWithSky(RenderOptions& o) {
   } else if (!o.sky.empty() && o.sky != "none") {
     scene.sky = loadEnvironmentMap(o.sky);
   }
+  checkSkyIntensity(scene.sky, o.skyIntensity);
   scene.skyIntensity = o.skyIntensity;
   scene.skyRotation = glm::radians(o.skyRotationDegrees);
   resolveImageSize(o, scene);

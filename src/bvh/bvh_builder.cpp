@@ -54,7 +54,9 @@ struct BinMapping {
   uint32_t count;
   uint32_t bin(const glm::vec3& c, uint32_t axis) const {
     float x = (c[axis] - origin[axis]) * scale[axis];
-    return std::min(static_cast<uint32_t>(x), count - 1);
+    // Compared before the conversion, which is undefined for NaN and for values past uint32
+    // (an extent of infinity gives 0 * infinity; the loader bounds coordinates, this stays safe).
+    return x >= 0.0f && x < float(count) ? static_cast<uint32_t>(x) : (x >= float(count) ? count - 1 : 0u);
   }
 };
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -14,17 +15,18 @@
 #include "bvh/bvh_builder.h"
 #include "bvh/instance_motion.h"
 #include "bvh/light_emission.h"
+#include "core/error.h"
 #include "core/log.h"
+#include "scene/scene_limits.h"
 #include "shaders/common/environment.h"
 #include "shaders/common/traverse.h"
 
 namespace wp {
 namespace {
 
-// A path down each level, plus the two entries a bottom-level visit may push while its lane
+// A path down a level, plus the two entries a bottom-level visit may push while its lane
 // holds a postponed leaf.
-static_assert(2 * WP_BVH_MAX_DEPTH + 2 <= WP_TRAVERSAL_STACK_SIZE,
-              "the traversal stack must hold a top-level and a bottom-level path");
+static_assert(WP_BVH_MAX_DEPTH + 2 <= WP_LEVEL_STACK_SIZE, "a traversal stack must hold a path down its level");
 
 constexpr uint32_t kMeshLeafSize = WP_MAX_LEAF_TRIANGLES;
 // One instance per top-level leaf: an instance test (transform plus a whole bottom-level
@@ -168,9 +170,25 @@ bool isInvertible(const glm::mat4& toWorld) {
 
 // Instances before the top-level build: their GPU record, world bounds (over the shutter
 // for moving ones), motion keys and source.
+// Throws wp::Error when `bounds` (of `what`, in world space) reach beyond ±kMaxCoordinate or
+// are not finite: transforms that place an object that far (a node scaled by 1e20, say)
+// would overflow the traversal's arithmetic.
+void checkWithinReach(const Aabb& bounds, const std::string& what) {
+  const glm::vec3 lo = glm::abs(bounds.min), hi = glm::abs(bounds.max);
+  const float reach = std::max({lo.x, lo.y, lo.z, hi.x, hi.y, hi.z});
+  if (!(reach <= kMaxCoordinate)) {
+    char text[64];
+    std::snprintf(text, sizeof(text), " reaches coordinate %g", double(reach));
+    throw Error(what + text +
+                ", beyond the ±1e12 scene units wavepath traces; fix the transforms that place it (or the animation "
+                "that moves it)");
+  }
+}
+
 struct InstanceCandidates {
   std::vector<gpu::GpuInstance> records;
   std::vector<Aabb> worldBounds;
+  std::vector<std::string> names;  // for messages: "instance 3 of mesh 'Cube'"
   std::vector<uint32_t> mesh;  // WP_INVALID for spheres
   std::vector<glm::mat4> objectToWorld;
   std::vector<std::optional<MotionKeys>> motion;
@@ -193,6 +211,7 @@ struct InstanceCandidates {
     }
     records.push_back(makeInstance(glm::inverse(toWorld), info));
     worldBounds.push_back(keys ? sweptBounds(*keys, objectBounds) : transformBox(toWorld, objectBounds));
+    names.push_back(what);
     mesh.push_back(meshIndex);
     objectToWorld.push_back(toWorld);
     motion.push_back(keys);
@@ -293,7 +312,7 @@ double sceneRadius(const GpuScene& out) {
 void setSkyProbability(const Scene& scene, double lightFlux, GpuScene& out) {
   double skyPower = scene.sky.width > 0 ? environmentPower(scene.sky, scene.skyIntensity, sceneRadius(out)) : 0.0;
   double total = skyPower + lightFlux;
-  out.sky.transform.z = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
+  out.sky.selectionProbability = total > 0.0 ? static_cast<float>(skyPower / total) : 0.0f;
 }
 
 }  // namespace
@@ -413,7 +432,9 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
 
   std::vector<glm::vec3> centers;
   Aabb sceneBounds;
-  for (const Aabb& b : candidates.worldBounds) {
+  for (size_t i = 0; i < candidates.worldBounds.size(); ++i) {
+    const Aabb& b = candidates.worldBounds[i];
+    checkWithinReach(b, candidates.names[i]);
     centers.push_back(b.center());
     sceneBounds.grow(b);
   }

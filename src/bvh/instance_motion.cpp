@@ -87,13 +87,14 @@ glm::mat4 objectToWorldAt(const MotionKeys& keys, float u) {
 // convex in p) with each squared scale at its larger end value (s_i(u) is linear, so s_i^2 is
 // convex in u): the object stays within r of T(u), which runs along the segment T0 T1.
 Aabb sweptBounds(const MotionKeys& keys, const Aabb& objectBounds) {
-  bool curved = keys.open.info.x == WP_MOTION_KEY_TRS && keys.open.worldToObject1 != keys.close.worldToObject1;
+  bool curved = gpu::motionKeyKind(keys.open) == WP_MOTION_KEY_TRS &&
+                gpu::motionKeyRotation(keys.open) != gpu::motionKeyRotation(keys.close);
   if (!curved) {
     Aabb box = transformBox(objectToWorldAt(keys, 0.0f), objectBounds);
     box.grow(transformBox(objectToWorldAt(keys, 1.0f), objectBounds));
     return box;
   }
-  glm::vec3 s0(keys.open.worldToObject2), s1(keys.close.worldToObject2);
+  glm::vec3 s0(gpu::motionKeyScale(keys.open)), s1(gpu::motionKeyScale(keys.close));
   glm::vec3 scaleSquared = glm::max(s0 * s0, s1 * s1);
   float radiusSquared = 0.0f;
   for (int corner = 0; corner < 8; ++corner) {
@@ -104,7 +105,7 @@ Aabb sweptBounds(const MotionKeys& keys, const Aabb& objectBounds) {
   }
   // A relative 1e-5 covers the float rounding of the GPU's interpolated transform.
   float radius = std::sqrt(radiusSquared) * (1.0f + 1e-5f);
-  glm::vec3 t0(keys.open.worldToObject0), t1(keys.close.worldToObject0);
+  glm::vec3 t0(gpu::motionKeyTranslation(keys.open)), t1(gpu::motionKeyTranslation(keys.close));
   return Aabb{glm::min(t0, t1) - radius, glm::max(t0, t1) + radius};
 }
 

@@ -13,7 +13,7 @@ glm::vec3 meanEmission(const std::vector<gpu::GpuTexture>& textures, const std::
   if (texture == WP_INVALID || !gpu::hasUv(shading)) {
     return factor;
   }
-  const glm::vec2 texelsPerUnit(textures[texture].info.y, textures[texture].info.z);
+  const glm::vec2 texelsPerUnit(gpu::textureWidth(textures[texture]), gpu::textureHeight(textures[texture]));
   const glm::vec2 uv[3] = {gpu::uvAt(shading, {0.0f, 0.0f}), gpu::uvAt(shading, {1.0f, 0.0f}),
                            gpu::uvAt(shading, {0.0f, 1.0f})};
   float extent = 0.0f;
@@ -21,8 +21,11 @@ glm::vec3 meanEmission(const std::vector<gpu::GpuTexture>& textures, const std::
     extent = std::max(extent, glm::length((uv[(k + 1) % 3] - uv[k]) * texelsPerUnit));
   }
   const int n = std::clamp(static_cast<int>(std::ceil(extent)), 4, 32);
+  gpu::DeviceBuffers buffers{};
+  buffers.textures = textures.data();
+  buffers.texels = texels.data();
   auto at = [&](float b1, float b2) {
-    return gpu::texturedEmission(textures.data(), texels.data(), factor, texture, true, gpu::uvAt(shading, {b1, b2}));
+    return gpu::texturedEmission(buffers, factor, texture, true, gpu::uvAt(shading, {b1, b2}));
   };
   // Splitting each edge into n parts makes n (n + 1) / 2 upright sub-triangles, with corners
   // (i, j), (i + 1, j), (i, j + 1) in units of 1 / n, and n (n - 1) / 2 inverted ones.

@@ -11,7 +11,7 @@
 namespace wp {
 
 // A refitted bottom level is rebuilt once its SAH cost exceeds the cost at its last build by
-// this factor. Read off the 100-frame curve in README.md (Animation): at 1.2 a deforming mesh
+// this factor. Read off the 100-frame curve in docs/animation.md: at 1.2 a deforming mesh
 // is rebuilt 4 times in 100 frames and its trees cost 6% more than fresh builds on average
 // (1.3: 2 rebuilds, 9%; 1.1: 7, 3%). A rebuild costs about 6 refits with their triangle
 // records and traversal is most of a frame's render time, so tighter thresholds pay while a

@@ -2,9 +2,12 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
+#include <csignal>
 #include <cerrno>
 #include <cstring>
 #include <string>
@@ -29,9 +32,44 @@ struct TempFileGuard {
 
 std::string systemError(int error) { return std::strerror(error); }
 
+// The signals that end a process by default: Ctrl-C, kill, a closed terminal, Ctrl-\.
+constexpr std::array<int, 4> kTerminationSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+volatile std::sig_atomic_t gDeferredSignal = 0;
+extern "C" void deferSignal(int signal) { gDeferredSignal = signal; }
+
+// While it lives, a termination signal (whichever thread gets it) is only noted; when it
+// ends, the previous handlers come back (the render's own, app/interrupt.h, or the default)
+// and a noted signal is raised again, with the effect it would have had. Not for concurrent
+// use: files are written one at a time.
+class TerminationSignalsDeferred {
+public:
+  TerminationSignalsDeferred() {
+    struct sigaction defer {};
+    defer.sa_handler = deferSignal;
+    defer.sa_flags = SA_RESTART;
+    sigemptyset(&defer.sa_mask);
+    for (size_t i = 0; i < kTerminationSignals.size(); ++i) sigaction(kTerminationSignals[i], &defer, &previous_[i]);
+  }
+  ~TerminationSignalsDeferred() {
+    for (size_t i = 0; i < kTerminationSignals.size(); ++i) sigaction(kTerminationSignals[i], &previous_[i], nullptr);
+    if (const int signal = gDeferredSignal) {
+      gDeferredSignal = 0;
+      std::raise(signal);
+    }
+  }
+  TerminationSignalsDeferred(const TerminationSignalsDeferred&) = delete;
+  TerminationSignalsDeferred& operator=(const TerminationSignalsDeferred&) = delete;
+
+private:
+  std::array<struct sigaction, kTerminationSignals.size()> previous_{};
+};
+
 }  // namespace
 
 void writeFileAtomically(const fs::path& path, const std::vector<unsigned char>& bytes, const char* what) {
+  // Declared first, so that it ends after the temporary file is renamed or removed: Ctrl-C
+  // during the write used to leave a hidden .NAME.tmpPID_N of several MB.
+  const TerminationSignalsDeferred deferred;
   auto fail = [&](const std::string& reason) {
     throw Error(std::string("cannot write ") + what + " '" + path.string() + "': " + reason);
   };

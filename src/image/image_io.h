@@ -44,9 +44,13 @@ void checkOutputPath(const std::filesystem::path& path);
 // (written beside it, then renamed). Throws wp::Error on failure.
 void writeImage(const std::filesystem::path& path, const RadianceImage& image, const DisplaySettings& display = {});
 
+// The most pixels an image reader accepts: the largest image wavepath renders.
+inline constexpr uint64_t kMaxImagePixels = 16384ull * 16384ull;
+
 // Reads R, G, B (and variance.R/G/B and the render record when present) of a scanline EXR
-// as float.
-// Throws wp::Error when the file cannot be read or lacks R, G or B.
+// as float. Throws wp::Error when the file is not a regular file, cannot be read, is
+// damaged, lacks R, G or B, or declares more than kMaxImagePixels pixels or more than its
+// bytes can hold (checked before the pixels are allocated).
 RadianceImage readExr(const std::filesystem::path& path);
 
 }  // namespace wp

@@ -9,17 +9,18 @@ namespace wp {
 namespace {
 
 template <typename T>
-SceneArray arrayOf(const std::vector<T>& v) {
-  return {v.data(), uint64_t(v.size()) * sizeof(T)};
+SceneArray arrayOf(const std::vector<T>& v, const char* name) {
+  return {v.data(), uint64_t(v.size()) * sizeof(T), name};
 }
 
 }  // namespace
 
 std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
-  // In the order of kSceneBindings.
-  return {arrayOf(s.nodes),       arrayOf(s.triangles),      arrayOf(s.instances),      arrayOf(s.planes),
-          arrayOf(s.materials),   arrayOf(s.lights),         arrayOf(s.skyRadiance),    arrayOf(s.skyMarginal),
-          arrayOf(s.skyConditional), arrayOf(s.triangleShading), arrayOf(s.textures), arrayOf(s.texels)};
+  // Each scene array of the binding table is the GpuScene member of the same name, which
+  // messages name it by.
+#define WP_SCENE_ARRAY(name) arrayOf(s.name, #name),
+  return {WP_FOR_EACH_SCENE_ARRAY};
+#undef WP_SCENE_ARRAY
 }
 
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels) {

@@ -9,22 +9,37 @@
 
 #include <glm/glm.hpp>
 
-#include "shaders/common/layout.h"
+#include "shaders/common/binding_table.h"
 
 namespace wp {
 
 struct GpuScene;
 
-// The bindings (layout.h) of a packed scene's arrays, in the order sceneArrays lists them.
-inline constexpr std::array<uint32_t, 12> kSceneBindings = {
-    WP_BINDING_NODES,          WP_BINDING_TRIANGLES,       WP_BINDING_INSTANCES,      WP_BINDING_PLANES,
-    WP_BINDING_MATERIALS,      WP_BINDING_LIGHTS,          WP_BINDING_ENV_RADIANCE,   WP_BINDING_ENV_MARGINAL,
-    WP_BINDING_ENV_CONDITIONAL, WP_BINDING_TRIANGLE_SHADING, WP_BINDING_TEXTURES,     WP_BINDING_TEXELS};
+// The bindings of a packed scene's arrays: the binding table's TEXELS rows, in its order,
+// which is the order sceneArrays lists them in.
+inline constexpr size_t kSceneArrayCount = [] {
+  size_t count = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    count += b.access == gpu::BindingAccess::Texels ? 1 : 0;
+  }
+  return count;
+}();
+inline constexpr std::array<uint32_t, kSceneArrayCount> kSceneBindings = [] {
+  std::array<uint32_t, kSceneArrayCount> bindings{};
+  size_t next = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    if (b.access == gpu::BindingAccess::Texels) {
+      bindings[next++] = b.index;
+    }
+  }
+  return bindings;
+}();
 
 // One array of a packed scene as a backend uploads it to kSceneBindings[i].
 struct SceneArray {
   const void* data = nullptr;
   uint64_t bytes = 0;
+  const char* name = "";  // what it holds, for messages: "triangle shading"
 };
 
 // What a GpuScene puts on the device, the one list both backends upload: entry i is read by
@@ -35,16 +50,40 @@ enum class Kernel { Generate, Extend, Shade, Advance, Connect, Accumulate };
 inline constexpr int kKernelCount = 6;
 const char* kernelName(Kernel kernel);
 
-// How many threads a dispatch runs: a count the host knows, or the length of a queue the
-// GPU wrote into the counters (Vulkan: indirect dispatch).
+// How many threads a dispatch runs: a count the host knows, or a queue's length as dispatch
+// arguments that an earlier dispatch of the pass wrote into the counters buffer, at word
+// `argumentsWord` (queues.h; Vulkan dispatches indirectly, OpenCL reads them back or
+// launches every path of the pass).
 struct DispatchSize {
-  enum class Source { Host, RayQueue, ShadowQueue };
+  enum class Source { Host, Queue };
   Source source = Source::Host;
-  uint32_t threads = 0;
+  uint32_t threads = 0;        // Host
+  uint32_t argumentsWord = 0;  // Queue: WP_COUNTER_*_DISPATCH
 
-  static DispatchSize fixed(uint32_t threads) { return {Source::Host, threads}; }
-  static DispatchSize rayQueue() { return {Source::RayQueue, 0}; }
-  static DispatchSize shadowQueue() { return {Source::ShadowQueue, 0}; }
+  static DispatchSize fixed(uint32_t threads) { return {Source::Host, threads, 0}; }
+  // The current bounce's ray queue (extend and shade).
+  static DispatchSize rayQueue() { return {Source::Queue, 0, WP_COUNTER_EXTEND_DISPATCH}; }
+  // The current bounce's shadow queue (connect).
+  static DispatchSize shadowQueue() { return {Source::Queue, 0, WP_COUNTER_CONNECT_DISPATCH}; }
+};
+
+// Whether a stage writes the dispatch arguments that later Queue-sized dispatches read.
+enum class DispatchArguments { Untouched, Written };
+
+// One stage of a pass, as the integrator orders them (wavefront.cpp).
+struct StageDispatch {
+  Kernel kernel;
+  gpu::PassConstants constants;
+  DispatchSize size;
+  DispatchArguments arguments = DispatchArguments::Untouched;
+};
+
+// What a pass is, before its dispatches: its paths, and the bounces it traces (rounds of
+// extend, shade, advance and connect), each of which traces at most one ray and one shadow
+// ray per path.
+struct PassShape {
+  uint32_t paths = 0;
+  uint32_t bounces = 0;
 };
 
 struct PassResult {
@@ -53,13 +92,20 @@ struct PassResult {
   std::array<double, kKernelCount> kernelMs{};  // GPU time per kernel; zeros if unsupported
 };
 
+// Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray and its
+// radiance.
+inline constexpr uint64_t kBytesPerPath =
+    2 * sizeof(gpu::PathRay) + sizeof(gpu::HitRecord) + sizeof(gpu::ShadowRay) + sizeof(glm::vec4);
+// Device memory a pixel of the accumulation takes: its sum and its sum of squares.
+inline constexpr uint64_t kAccumulationBytesPerPixel = 2 * sizeof(glm::vec4);
+
 // Running per-pixel sums of radiance and of its square over all samples so far.
 struct Accumulation {
   std::vector<glm::vec4> sum;
   std::vector<glm::vec4> sumSquares;
 };
 
-// The accumulation buffer's contents for `accumulation` (WP_BINDING_ACCUM: the sums of
+// The accumulation buffer's contents for `accumulation` (Binding::accumulation: the sums of
 // every pixel, then the sums of squares); throws wp::Error when the arrays do not hold
 // `pixels` entries each.
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels);
@@ -73,20 +119,27 @@ public:
   virtual uint32_t maxPathsInFlight() const = 0;
   // Uploads the scene and picks the stage kernels for it: with motion blur where something
   // moves (GpuScene::moving), else without. Call before configure; may be called again to
-  // replace the scene.
+  // replace the scene. Throws wp::Error, naming the array, its size and the device's limit,
+  // when an array or the whole scene does not fit the device.
   virtual void loadScene(const GpuScene& scene) = 0;
   // Whether the kernels of the loaded scene are the motion-blur ones.
   virtual bool motionKernels() const = 0;
-  // Sets the render parameters and sizes path state for params.counts.w paths and the
-  // accumulation for params.image.z pixels; clears the accumulation.
+  // The most pixels whose accumulation fits the device beside the loaded scene and
+  // `maxPaths` paths in flight, by the largest buffer and by its memory (an image with more
+  // is rendered in tiles). Call after loadScene.
+  virtual uint64_t maxAccumulationPixels(uint32_t maxPaths) const = 0;
+  // Sets the render parameters and sizes path state for params.maxPaths paths and the
+  // accumulation for params.pixelCount pixels (the tile's); clears the accumulation. Throws
+  // wp::Error, saying what needs how much and what the device allows, when a buffer does
+  // not fit.
   virtual void configure(const gpu::RenderParams& params) = 0;
   // Starts recording a sample pass; dispatches run in order, each after the previous one.
-  virtual void beginPass() = 0;
-  virtual void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) = 0;
+  virtual void beginPass(const PassShape& shape) = 0;
+  virtual void dispatch(const StageDispatch& stage) = 0;
   // Runs the recorded pass and waits for it.
   virtual PassResult endPass() = 0;
   virtual Accumulation readAccumulation() = 0;
-  // Replaces the accumulation with `accumulation` (one entry per pixel of params.image.z in
+  // Replaces the accumulation with `accumulation` (one entry per pixel of params.pixelCount in
   // each array), e.g. a checkpoint's sums to go on from.
   virtual void writeAccumulation(const Accumulation& accumulation) = 0;
 };

@@ -48,9 +48,9 @@ RenderIdentity renderIdentity(const GpuScene& scene, const gpu::RenderParams& pa
     XXH3_64bits_update(state.get(), array.data, array.bytes);
   }
   gpu::RenderParams hashed = params;
-  hashed.image.z = 0;
-  hashed.counts.w = 0;
-  hashed.region = glm::uvec4(0);
+  hashed.pixelCount = 0;
+  hashed.maxPaths = 0;
+  hashed.regionX = hashed.regionY = hashed.regionWidth = hashed.regionHeight = 0;
   XXH3_64bits_update(state.get(), &hashed, sizeof(hashed));
   char hex[17];
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(XXH3_64bits_digest(state.get())));

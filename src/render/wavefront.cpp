@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "bvh/gpu_scene.h"
+#include "core/error.h"
 #include "render/camera_lens.h"
 #include "scene/scene.h"
 #include "shaders/common/bsdf_models.h"
@@ -18,27 +20,48 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.camera = makeLens(scene.camera, settings.width, settings.height);
   p.sky = gpuScene.sky;
   if (!settings.skySampling) {
-    p.sky.transform.z = 0.0f;  // the sky is then found by BSDF sampling alone
+    p.sky.selectionProbability = 0.0f;  // the sky is then found by BSDF sampling alone
   }
   const PixelRegion region = settings.pixelRegion();
-  const uint32_t pixels = uint32_t(region.pixels());
-  p.image = glm::uvec4(settings.width, settings.height, pixels, settings.seed);
-  p.region = glm::uvec4(region.x0, region.y0, region.width(), region.height());
-  uint32_t mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
-                  : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
-                                                             : WP_MODE_BSDF;
-  p.mode = glm::uvec4(settings.maxBounces, mode, settings.russianRouletteStart, uint32_t(gpuScene.lights.size()));
-  uint64_t totalPaths = uint64_t(pixels) * settings.samplesInRange();
-  uint32_t maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
-  p.counts = glm::uvec4(uint32_t(gpuScene.planes.size()), gpuScene.tlasRoot, gpuScene.placedInstances,
-                        maxPaths);
-  uint32_t bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
-                       (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
-  uint32_t lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
-                                                                                  : WP_LIGHT_SELECTION_POWER;
-  p.shading = glm::uvec4(bsdfFlags, glm::floatBitsToUint(settings.contributionClamp), lightSelection,
-                         gpuScene.punctualLightCount);
+  p.width = settings.width;
+  p.height = settings.height;
+  p.pixelCount = uint32_t(region.pixels());
+  p.seed = settings.seed;
+  p.regionX = region.x0;
+  p.regionY = region.y0;
+  p.regionWidth = region.width();
+  p.regionHeight = region.height();
+  p.maxBounces = settings.maxBounces;
+  p.mode = settings.mode == IntegratorMode::Mis       ? WP_MODE_MIS
+           : settings.mode == IntegratorMode::NeeOnly ? WP_MODE_NEE
+                                                      : WP_MODE_BSDF;
+  p.rouletteStart = settings.russianRouletteStart;
+  p.lightCount = uint32_t(gpuScene.lights.size());
+  p.planeCount = uint32_t(gpuScene.planes.size());
+  p.tlasRoot = gpuScene.tlasRoot;
+  p.instanceCount = gpuScene.placedInstances;
+  uint64_t totalPaths = uint64_t(p.pixelCount) * settings.samplesInRange();
+  p.maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
+  p.bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
+                (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
+  p.contributionClamp = settings.contributionClamp;
+  p.lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
+                                                                            : WP_LIGHT_SELECTION_POWER;
+  p.punctualLightCount = gpuScene.punctualLightCount;
   return p;
+}
+
+std::vector<PixelRegion> splitIntoTiles(const PixelRegion& region, uint64_t maxPixels) {
+  const uint32_t height = region.height();
+  const uint64_t rowsPerTile = std::clamp<uint64_t>(maxPixels / region.width(), 1, height);
+  const uint64_t count = (height + rowsPerTile - 1) / rowsPerTile;
+  std::vector<PixelRegion> tiles;
+  for (uint64_t i = 0; i < count; ++i) {
+    const auto top = region.y0 + uint32_t(height * i / count);
+    const auto bottom = region.y0 + uint32_t(height * (i + 1) / count);
+    tiles.push_back({region.x0, top, region.x1, bottom});
+  }
+  return tiles;
 }
 
 WavefrontRenderer::WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene,
@@ -52,12 +75,51 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   settings_ = settings;
   settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
-  backend_.configure(params_);
-  firstPath_ = uint64_t(params_.image.z) * settings_.firstSample;
+  const PixelRegion region = settings_.pixelRegion();
+  firstPath_ = region.pixels() * settings_.firstSample;
   pathsDone_ = firstPath_;
+  tiles_ = splitIntoTiles(region, backend_.maxAccumulationPixels(settings_.maxPaths));
+  tiledSums_ = {};
+  if (tiles_.size() > 1) {
+    tiledSums_.sum.assign(region.pixels(), glm::vec4(0.0f));
+    tiledSums_.sumSquares.assign(region.pixels(), glm::vec4(0.0f));
+  }
+  configureTile(0);
+}
+
+void WavefrontRenderer::configureTile(size_t index) {
+  const PixelRegion& tile = tiles_[index];
+  params_.regionX = tile.x0;
+  params_.regionY = tile.y0;
+  params_.regionWidth = tile.width();
+  params_.regionHeight = tile.height();
+  params_.pixelCount = uint32_t(tile.pixels());
+  params_.maxPaths =
+      uint32_t(std::clamp<uint64_t>(tile.pixels() * settings_.samplesInRange(), 1, settings_.maxPaths));
+  backend_.configure(params_);
+  tile_ = index;
+}
+
+uint64_t WavefrontRenderer::tileStart(size_t index) const {
+  uint64_t start = firstPath_;
+  for (size_t t = 0; t < index; ++t) start += tiles_[t].pixels() * settings_.samplesInRange();
+  return start;
+}
+
+uint64_t WavefrontRenderer::tileEnd(size_t index) const {
+  return tileStart(index) + tiles_[index].pixels() * settings_.samplesInRange();
+}
+
+void WavefrontRenderer::storeTile() {
+  const Accumulation tile = backend_.readAccumulation();
+  const PixelRegion region = settings_.pixelRegion();
+  const size_t at = size_t(tiles_[tile_].y0 - region.y0) * region.width();  // tiles are bands of whole rows
+  std::copy(tile.sum.begin(), tile.sum.end(), tiledSums_.sum.begin() + long(at));
+  std::copy(tile.sumSquares.begin(), tile.sumSquares.end(), tiledSums_.sumSquares.begin() + long(at));
 }
 
 void WavefrontRenderer::resume(const Accumulation& accumulation, uint64_t pathsDone) {
+  if (tiles_.size() > 1) throw std::logic_error("a render in tiles cannot resume a checkpoint");
   backend_.writeAccumulation(accumulation);
   pathsDone_ = pathsDone;
 }
@@ -71,23 +133,22 @@ void WavefrontRenderer::restart(const Scene& scene, const GpuScene& gpuScene, co
 }
 
 void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats) {
-  auto constants = [&](uint32_t bounce) {
-    gpu::PassConstants c;
-    c.pass = glm::uvec4(firstPixel, firstSample, pathCount, bounce);
-    return c;
-  };
-  backend_.beginPass();
-  backend_.dispatch(Kernel::Generate, constants(0), DispatchSize::fixed(pathCount));
+  auto constants = [&](uint32_t bounce) { return gpu::PassConstants{firstPixel, firstSample, pathCount, bounce}; };
   // Vertices of bounce 0 .. maxBounces scatter; the rays they spawn reach bounce
   // maxBounces + 1, where only emission is gathered.
-  for (uint32_t bounce = 0; bounce <= settings_.maxBounces + 1; ++bounce) {
-    backend_.dispatch(Kernel::Extend, constants(bounce), DispatchSize::rayQueue());
-    backend_.dispatch(Kernel::Shade, constants(bounce), DispatchSize::rayQueue());
-    backend_.dispatch(Kernel::Advance, constants(bounce), DispatchSize::fixed(1));
-    backend_.dispatch(Kernel::Connect, constants(bounce), DispatchSize::shadowQueue());
+  const uint32_t bounces = settings_.maxBounces + 2;
+  backend_.beginPass({pathCount, bounces});
+  // Generate fills bounce 0's ray queue and sizes extend and shade to it; each advance sizes
+  // connect of its bounce and extend and shade of the next (queues.h).
+  backend_.dispatch({Kernel::Generate, constants(0), DispatchSize::fixed(pathCount), DispatchArguments::Written});
+  for (uint32_t bounce = 0; bounce < bounces; ++bounce) {
+    backend_.dispatch({Kernel::Extend, constants(bounce), DispatchSize::rayQueue()});
+    backend_.dispatch({Kernel::Shade, constants(bounce), DispatchSize::rayQueue()});
+    backend_.dispatch({Kernel::Advance, constants(bounce), DispatchSize::fixed(1), DispatchArguments::Written});
+    backend_.dispatch({Kernel::Connect, constants(bounce), DispatchSize::shadowQueue()});
   }
-  uint32_t pixels = params_.image.z;
-  backend_.dispatch(Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels)));
+  uint32_t pixels = params_.pixelCount;
+  backend_.dispatch({Kernel::Accumulate, constants(0), DispatchSize::fixed(std::min(pathCount, pixels))});
   PassResult result = backend_.endPass();
   stats.extensionRays += result.extensionRays;
   stats.shadowRays += result.shadowRays;
@@ -98,9 +159,12 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
 }
 
 void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
-  const uint64_t pixels = params_.image.z;
-  uint32_t count = uint32_t(std::min<uint64_t>({params_.counts.w, maxCount, end - pathsDone_}));
-  runPass(uint32_t(pathsDone_ % pixels), uint32_t(pathsDone_ / pixels), count, stats);
+  // The current tile's pixels, and where the next path lies in its own render order.
+  const uint64_t pixels = params_.pixelCount;
+  const uint64_t stop = tiles_.size() > 1 ? std::min(end, tileEnd(tile_)) : end;
+  const uint64_t path = pixels * settings_.firstSample + (pathsDone_ - tileStart(tile_));
+  uint32_t count = uint32_t(std::min<uint64_t>({params_.maxPaths, maxCount, stop - pathsDone_}));
+  runPass(uint32_t(path % pixels), uint32_t(path / pixels), count, stats);
   pathsDone_ += count;
   stats.samples += count;
 }
@@ -109,7 +173,11 @@ RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   while (pathsDone_ < pathsEnd()) {
-    runNextPass(pathsEnd(), params_.counts.w, stats);
+    runNextPass(pathsEnd(), params_.maxPaths, stats);
+    if (tiles_.size() > 1 && pathsDone_ == tileEnd(tile_)) {
+      storeTile();
+      if (tile_ + 1 < tiles_.size()) configureTile(tile_ + 1);
+    }
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (afterPass && !afterPass(stats)) break;
   }
@@ -117,12 +185,17 @@ RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats
   return stats;
 }
 
-uint64_t WavefrontRenderer::pathsEnd() const { return uint64_t(params_.image.z) * settings_.sampleEnd(); }
+uint64_t WavefrontRenderer::pathsEnd() const { return settings_.pixelRegion().pixels() * settings_.sampleEnd(); }
 
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
+  if (tiles_.size() > 1) {
+    throw Error("a " + std::to_string(settings_.width) + "x" + std::to_string(settings_.height) +
+                " image does not fit " + backend_.deviceName() + " at once, and a progressive render cannot be split "
+                "into tiles; make the window smaller");
+  }
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
-  const uint64_t end = uint64_t(params_.image.z) * samplesPerPixel;
+  const uint64_t end = uint64_t(params_.pixelCount) * samplesPerPixel;
   // Passes fill what is left of the budget at the measured rate, but never fall under
   // kSmallestPass paths, and the frame ends rather than run a pass under a quarter of the
   // budget: a small pass pays the fixed cost per pass (four dispatches per bounce) on few
@@ -149,12 +222,27 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
 }
 
 uint32_t WavefrontRenderer::samplesPerPixelDone() const {
-  return uint32_t((pathsDone_ - firstPath_) / params_.image.z);
+  return uint32_t((pathsDone_ - firstPath_) / settings_.pixelRegion().pixels());
 }
 
-Accumulation WavefrontRenderer::accumulation() { return backend_.readAccumulation(); }
+Accumulation WavefrontRenderer::accumulation() {
+  if (tiles_.size() > 1) throw std::logic_error("a render in tiles has no checkpoint");
+  return backend_.readAccumulation();
+}
 
-RadianceImage WavefrontRenderer::image() { return imageOf(backend_.readAccumulation()); }
+RadianceImage WavefrontRenderer::image() {
+  RadianceImage image = imageOf(tiles_.size() > 1 ? tiledSums_ : backend_.readAccumulation());
+  // What a scene may hold is bounded (scene_limits.h, the loader's checks) so that no sum
+  // overflows: a pixel that is not finite is a bug, said rather than written to a file.
+  for (size_t i = 0; i < image.mean.size(); ++i) {
+    const glm::vec3 both = image.mean[i] + image.variance[i];
+    if (!std::isfinite(both.x) || !std::isfinite(both.y) || !std::isfinite(both.z)) {
+      throw std::logic_error("the render produced a pixel that is not a finite number, (" +
+                             std::to_string(i % image.width) + ", " + std::to_string(i / image.width) + ")");
+    }
+  }
+  return image;
+}
 
 RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   RadianceImage image;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "image/image_io.h"
 #include "render/backend.h"
@@ -27,24 +28,32 @@ struct RenderStats {
 // The GPU-side parameters of a render of `scene` (camera, image, integrator switches).
 gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
+// `region` cut into bands of whole rows, as few as keep each under `maxPixels` and as even
+// as that allows; one row each when not even one fits (the backend then says so).
+std::vector<PixelRegion> splitIntoTiles(const PixelRegion& region, uint64_t maxPixels);
+
 class WavefrontRenderer {
 public:
   // Loads the scene into `backend` and configures it for `settings`, with the paths in
-  // flight lowered to what the device can hold.
+  // flight lowered to what the device can hold, and the region cut into tiles when its
+  // accumulation does not fit the device at once.
   WavefrontRenderer(Backend& backend, const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
 
   // Traces the samples [firstSample, sampleEnd()) of every pixel of the region (the
   // settings') that are not traced yet, calling afterPass with the figures so far after
   // each pass; when it returns false the render stops there, to go on by a later call
-  // (possibly after resume() in another process).
+  // (possibly after resume() in another process). With several tiles, tile after tile:
+  // each pixel's paths are the same as without tiles, so the image is the same bit for bit.
   RenderStats render(const std::function<bool(const RenderStats&)>& afterPass);
+  // How many tiles the region is rendered in (1 when it fits the device at once).
+  size_t tileCount() const { return tiles_.size(); }
 
   // Progressive rendering (the viewer): runs whole passes, continuing where the last one
   // stopped, until `budgetSeconds` is spent (at least one pass) or every pixel has
   // `samplesPerPixel` samples. Passes are sized from the time earlier passes took per path
   // so they end near the budget (at most the paths in flight). Paths follow the same order
   // as render()'s, so a progressive render that reaches N samples equals render() of N
-  // samples bit for bit.
+  // samples bit for bit. Throws wp::Error when the image needs tiles.
   RenderStats renderFor(double budgetSeconds, uint32_t samplesPerPixel);
   // Replaces the settings and the scene's camera and sky (makeRenderParams) and clears the
   // accumulation. Reuploads the scene when `reloadScene` (a changed GpuScene).
@@ -59,9 +68,10 @@ public:
   RadianceImage imageOf(const Accumulation& accumulation) const;
 
   // Where a render stands, for a checkpoint: the paths traced so far in render order (path
-  // k is sample k / pixels of region pixel k % pixels, counted from sample 0) and the
-  // per-pixel sums they were accumulated into. Paths [firstSample * pixels, pathsDone()) are
-  // in the sums.
+  // k is sample k / pixels of region pixel k % pixels, counted from sample 0; with tiles,
+  // each tile's paths in that order after the tiles before it) and the per-pixel sums they
+  // were accumulated into. Paths [firstSample * pixels, pathsDone()) are in the sums. A render
+  // in tiles has no checkpoints: accumulation() and resume() require a single tile.
   uint64_t pathsDone() const { return pathsDone_; }
   uint64_t pathsEnd() const;
   Accumulation accumulation();
@@ -74,10 +84,20 @@ private:
   // Runs the next pass of at most `maxCount` paths, stopping at path index `end`.
   void runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats);
   void configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
+  // Points the backend at tile `index` with an empty accumulation.
+  void configureTile(size_t index);
+  // The first path of tile `index` in render order, and the one after its last.
+  uint64_t tileStart(size_t index) const;
+  uint64_t tileEnd(size_t index) const;
+  // Copies the current tile's sums into the region's (tiledSums_).
+  void storeTile();
 
   Backend& backend_;
   RenderSettings settings_;
-  gpu::RenderParams params_;
+  gpu::RenderParams params_;  // its region and pixelCount are the current tile's
+  std::vector<PixelRegion> tiles_;
+  size_t tile_ = 0;            // the one configured
+  Accumulation tiledSums_;     // with several tiles: the region's sums, finished tiles filled in
   // Paths traced, in render order: path k is sample k / pixels of region pixel k % pixels.
   // A render starts at path firstPath_ (sample settings.firstSample).
   uint64_t firstPath_ = 0;

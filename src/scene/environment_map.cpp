@@ -2,16 +2,16 @@
 // their sin(theta)-weighted luminance distribution.
 #include "scene/environment_map.h"
 
-#include <stb_image.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <memory>
+#include <cstdio>
 #include <string>
 
 #include "core/error.h"
+#include "image/hdr_reader.h"
 #include "image/image_io.h"
+#include "scene/scene_limits.h"
 #include "shaders/common/sampling.h"
 
 namespace wp {
@@ -46,20 +46,6 @@ std::string lowerExtension(const fs::path& path) {
   return ext;
 }
 
-std::vector<glm::vec3> readHdr(const fs::path& path, uint32_t& width, uint32_t& height) {
-  if (!stbi_is_hdr(path.c_str())) skyError(path, "not a Radiance HDR file; save the sky as .hdr or .exr");
-  int w = 0, h = 0, channels = 0;
-  std::unique_ptr<float, decltype(&stbi_image_free)> data(stbi_loadf(path.c_str(), &w, &h, &channels, 3),
-                                                          &stbi_image_free);
-  if (!data) skyError(path, std::string("cannot be read (") + stbi_failure_reason() + "); check that it is intact");
-  width = static_cast<uint32_t>(w);
-  height = static_cast<uint32_t>(h);
-  const float* rgb = data.get();
-  std::vector<glm::vec3> texels(size_t(width) * height);
-  for (size_t i = 0; i < texels.size(); ++i) texels[i] = {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]};
-  return texels;
-}
-
 }  // namespace
 
 EnvironmentMap makeEnvironmentMap(uint32_t width, uint32_t height, const std::vector<glm::vec3>& radiance) {
@@ -72,6 +58,12 @@ EnvironmentMap makeEnvironmentMap(uint32_t width, uint32_t height, const std::ve
     if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
       throw Error("texel (" + std::to_string(i % width) + ", " + std::to_string(i / width) +
                   ") is not a finite number; fix or re-export the image");
+    if (std::max({c.x, c.y, c.z}) > kMaxRadiance) {
+      char text[120];
+      std::snprintf(text, sizeof(text), "texel (%zu, %zu) is %g, above %g, brighter than any real sky", i % width,
+                    i / width, double(std::max({c.x, c.y, c.z})), kMaxRadiance);
+      throw Error(std::string(text) + "; fix or re-export the image");
+    }
     map.radiance.emplace_back(glm::max(c, glm::vec3(0.0f)), 0.0f);
   }
 
@@ -105,30 +97,32 @@ EnvironmentMap makeEnvironmentMap(uint32_t width, uint32_t height, const std::ve
 }
 
 EnvironmentMap loadEnvironmentMap(const fs::path& path) {
-  std::error_code ec;
-  fs::file_status status = fs::status(path, ec);
-  if (status.type() == fs::file_type::not_found) skyError(path, "no such file; check the path");
-  if (ec) skyError(path, "cannot be accessed (" + ec.message() + "); check the path and its permissions");
-  if (!fs::is_regular_file(status)) skyError(path, "not a regular file; give the path of a .hdr or .exr image");
-
   std::string ext = lowerExtension(path);
-  uint32_t width = 0, height = 0;
-  std::vector<glm::vec3> texels;
+  RadianceImage image;
   if (ext == ".hdr") {
-    texels = readHdr(path, width, height);
+    image = readHdr(path);
   } else if (ext == ".exr") {
-    RadianceImage image = readExr(path);
-    width = image.width;
-    height = image.height;
-    texels = std::move(image.mean);
+    image = readExr(path);
   } else {
     skyError(path, "unsupported format '" + ext + "'; give an equirectangular .hdr or .exr image");
   }
-  if (width == 0 || height == 0) skyError(path, "the image is empty; re-export the sky");
   try {
-    return makeEnvironmentMap(width, height, texels);
+    return makeEnvironmentMap(image.width, image.height, image.mean);
   } catch (const Error& e) {
     skyError(path, e.what());
+  }
+}
+
+void checkSkyIntensity(const EnvironmentMap& map, double intensity) {
+  float brightest = 0.0f;
+  for (const glm::vec4& texel : map.radiance) brightest = std::max({brightest, texel.x, texel.y, texel.z});
+  if (double(brightest) * intensity > kMaxRadiance) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "--sky-intensity %g makes the sky's brightest texel %g, above %g, brighter than any real sky; "
+                  "lower --sky-intensity",
+                  intensity, double(brightest) * intensity, kMaxRadiance);
+    throw Error(text);
   }
 }
 

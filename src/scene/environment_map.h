@@ -29,15 +29,21 @@ struct EnvironmentMap {
 // A sky from `radiance` (width * height texels, top row first, linear rgb). The sampling
 // density of a texel is proportional to its luminance times sin(theta) at its row's centre,
 // as environment.h expects; a black map samples (nearly) uniformly over the sphere. Requires width, height >= 1 and
-// radiance.size() == width * height; throws wp::Error for a non-finite texel. Negative
+// radiance.size() == width * height; throws wp::Error for a texel that is not finite or is
+// above kMaxRadiance (scene_limits.h). Negative
 // components, which radiance cannot have but filtered or compressed images sometimes hold,
 // are clamped to 0.
 EnvironmentMap makeEnvironmentMap(uint32_t width, uint32_t height, const std::vector<glm::vec3>& radiance);
 
-// Reads an equirectangular sky from a Radiance .hdr (stb_image) or an OpenEXR .exr (R, G, B
+// Reads an equirectangular sky from a Radiance .hdr (readHdr) or an OpenEXR .exr (R, G, B
 // through readExr) file and builds its distribution. Throws wp::Error, one line naming the
-// file and what to do, when it is missing, of another format, or unreadable.
+// file and what to do, when it is missing, of another format, unreadable, or holds a texel
+// that is not finite or above kMaxRadiance (scene_limits.h).
 EnvironmentMap loadEnvironmentMap(const std::filesystem::path& path);
+
+// Throws wp::Error, naming --sky-intensity, when `intensity` times the sky's brightest texel
+// is above kMaxRadiance.
+void checkSkyIntensity(const EnvironmentMap& map, double intensity);
 
 // The power the sky sends into a scene inside a sphere of radius `sceneRadius`: the flux
 // through that sphere's cross-section, pi r^2 * intensity * luminanceIntegral (the estimate

@@ -1,4 +1,4 @@
-// Bounds-checked reading of glTF accessors: vertex attributes and indices.
+// Bounds-checked reading of glTF accessors (sparse ones included): vertex attributes and indices.
 #pragma once
 
 #include <cstdint>
@@ -11,18 +11,23 @@
 
 namespace wp::gltf {
 
-// Reads a FLOAT VEC3 accessor, honouring the accessor's and buffer view's byteOffset and
-// the view's byteStride. Throws, naming `where` and the accessor, when the index does not
-// exist, the type is wrong, the accessor is sparse or has no buffer view, any element lies
-// outside its buffer view or buffer, or a value is not finite. `attribute` names the
-// primitive attribute in messages (POSITION, NORMAL).
+// Reads a VEC3 accessor (POSITION, NORMAL, morph target deltas), honouring the accessor's
+// and buffer view's byteOffset, the view's byteStride and sparse substitution. FLOAT, or
+// (KHR_mesh_quantization) BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT, normalized or not,
+// decoded as glTF says. Throws, naming `where` and the accessor, when the index does not
+// exist, the type is wrong, the accessor has neither a buffer view nor sparse values, any
+// element or sparse index lies outside its buffer view or buffer, or a value is not finite.
+// `attribute` names the primitive attribute in messages.
 std::vector<glm::vec3> readVec3Attribute(const Context& ctx, int accessor, const std::string& where,
                                          const char* attribute);
 
-// Reads a FLOAT VEC2 accessor (TEXCOORD_0) with the same checks as readVec3Attribute.
-std::vector<glm::vec2> readTexCoords(const Context& ctx, int accessor, const std::string& where);
+// Reads a VEC2 accessor (`attribute`: TEXCOORD_n) of any type readVec3Attribute takes,
+// with the same checks.
+std::vector<glm::vec2> readTexCoords(const Context& ctx, int accessor, const std::string& where,
+                                     const char* attribute);
 
-// Reads a FLOAT VEC4 accessor (TANGENT) as stored, with the same checks as readVec3Attribute.
+// Reads a VEC4 accessor (TANGENT) as stored: FLOAT, or normalized BYTE or SHORT
+// (KHR_mesh_quantization), with the same checks as readVec3Attribute.
 std::vector<glm::vec4> readTangents(const Context& ctx, int accessor, const std::string& where);
 
 // Reads COLOR_0 (VEC3 or VEC4; FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT) as

@@ -1,11 +1,14 @@
 // KHR_lights_punctual: the file's lights, and which node places which.
 #include "scene/gltf_lights.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <string>
 
 #include "core/log.h"
+#include "scene/scene_limits.h"
 
 namespace wp::gltf {
 
@@ -38,10 +41,12 @@ PunctualLight convert(const Context& ctx, const tinygltf::Light& light, size_t i
     fail(ctx, where, "intensity must be a finite number >= 0 (candela, or lux for a directional light); fix the light");
   }
   const double watts = light.intensity / kLumensPerWatt;
-  out.intensity = glm::vec3(float(color[0] * watts), float(color[1] * watts), float(color[2] * watts));
-  if (!std::isfinite(out.intensity.x) || !std::isfinite(out.intensity.y) || !std::isfinite(out.intensity.z)) {
-    fail(ctx, where, "its intensity overflows single precision; lower it");
+  // The same bound as emission and skies (scene_limits.h), on W/sr or W/m^2.
+  if (std::max({color[0], color[1], color[2]}) * watts > kMaxRadiance) {
+    fail(ctx, where, "its intensity times its color is above " + std::to_string(int64_t(kMaxRadiance * kLumensPerWatt)) +
+                         " candela (or lux), brighter than any real lamp; lower it");
   }
+  out.intensity = glm::vec3(float(color[0] * watts), float(color[1] * watts), float(color[2] * watts));
   if (out.kind == PunctualLight::Kind::Spot) {
     const double inner = light.spot.innerConeAngle;
     const double outer = light.spot.outerConeAngle;

@@ -1,6 +1,6 @@
 // Loading a glTF 2.0 file (.gltf or .glb) into a wavepath scene.
 //
-// wavepath shapes in node extras (a stable schema; the README quotes it):
+// wavepath shapes in node extras (a stable schema; docs/scenes.md quotes it):
 //
 //   "extras": {"wavepath": {"shape": "sphere", "radius": 0.5, "material": 2}}
 //       A sphere centred at the node origin, with the given radius in node-local units
@@ -12,7 +12,7 @@
 //       (transformed by the inverse transpose of the node's world matrix and normalised).
 //       Its front side is the side +Y points to.
 //
-//   Physical camera settings in a camera's extras (all optional; the README quotes them):
+//   Physical camera settings in a camera's extras (all optional; docs/camera-and-sky.md quotes them):
 //   "cameras": [{"type": "perspective", ..., "extras": {"wavepath": {"fStop": 2.8,
 //       "focusDistance": 1.5, "focalLength": 50, "blades": 6, "bladeRotation": 0,
 //       "sensorWidth": 36, "sensorHeight": 24, "shutter": 0.01, "iso": 100}}}]
@@ -40,6 +40,7 @@
 #include "scene/gltf_animation.h"
 #include "scene/gltf_camera_extras.h"
 #include "scene/gltf_cameras.h"
+#include "scene/gltf_compression.h"
 #include "scene/gltf_context.h"
 #include "scene/gltf_extensions.h"
 #include "scene/gltf_extras.h"
@@ -329,9 +330,14 @@ private:
 }  // namespace
 
 Scene loadScene(const std::filesystem::path& file, const LoadOptions& options) {
-  const tinygltf::Model model = gltf::parseGltfFile(file);
+  // The warnings of a large file are summed up before the render (or the error) comes.
+  struct FlushWarnings {
+    ~FlushWarnings() { flushWarnings(); }
+  } flush;
+  tinygltf::Model model = gltf::parseGltfFile(file);
   const gltf::Context ctx{file.string(), model};
   gltf::checkExtensions(ctx);
+  gltf::decodeCompressedData(ctx, model);
   return SceneBuilder(ctx, options).build();
 }
 

@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "scene/gltf_textures.h"
+#include "scene/scene_limits.h"
 
 namespace wp::gltf {
 
@@ -114,9 +116,17 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   out.attenuationDistance = static_cast<float>(readNumber(ctx, material, kVolume, "attenuationDistance",
                                                           std::numeric_limits<float>::max(), 1e-30,
                                                           std::numeric_limits<float>::max(), "> 0", where));
-  out.emission = glm::max(glm::vec3(emissive[0], emissive[1], emissive[2]), 0.0f) *
-                 static_cast<float>(readNumber(ctx, material, kEmissiveStrength, "emissiveStrength", 1.0, 0.0,
-                                               std::numeric_limits<double>::max(), ">= 0", where));
+  const double strength = readNumber(ctx, material, kEmissiveStrength, "emissiveStrength", 1.0, 0.0,
+                                     std::numeric_limits<double>::max(), ">= 0", where);
+  const glm::dvec3 emission = glm::max(glm::dvec3(emissive[0], emissive[1], emissive[2]), 0.0) * strength;
+  const double brightest = std::max({emission.r, emission.g, emission.b});
+  if (!(brightest <= kMaxRadiance)) {
+    char text[80];
+    std::snprintf(text, sizeof(text), "emission %g (emissiveFactor times emissiveStrength) is above %g", brightest,
+                  kMaxRadiance);
+    fail(ctx, where, std::string(text) + ", brighter than any real emitter; fix the material");
+  }
+  out.emission = glm::vec3(emission);
   out.doubleSided = material.doubleSided;
   return out;
 }

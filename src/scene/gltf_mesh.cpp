@@ -59,6 +59,12 @@ struct VertexSource {
   }
 };
 
+// Where the vertices of one VertexSource lie in the mesh being built.
+struct VertexRange {
+  uint32_t first = 0;
+  uint32_t count = 0;
+};
+
 class MeshBuilder {
 public:
   MeshBuilder(const Context& ctx, size_t meshIndex, uint32_t defaultMaterial, MeshDeformation* deformation,
@@ -128,7 +134,7 @@ private:
            "a TRIANGLES primitive needs a multiple of 3 vertices, not " + std::to_string(sequence.size()) +
                "; re-export the file");
     }
-    const uint32_t base = baseOf_.at(source);
+    const uint32_t base = verticesOf_.at(source).first;
     for (uint32_t v : triangulate(sequence, mode)) mesh_.indices.push_back(base + v);
     mesh_.materials.resize(mesh_.indices.size() / 3, material);
   }
@@ -144,10 +150,9 @@ private:
   }
 
   // Appends the vertices of a POSITION (and NORMAL) accessor pair once per mesh (primitives
-  // often share one vertex buffer) and returns its vertex count.
+  // often share one vertex buffer) and returns its vertex count, as read (so checked).
   uint32_t addVertices(const VertexSource& source, const std::string& where) {
-    const uint32_t count = static_cast<uint32_t>(ctx_.model.accessors[static_cast<size_t>(source.position)].count);
-    if (baseOf_.count(source) != 0) return count;
+    if (const auto known = verticesOf_.find(source); known != verticesOf_.end()) return known->second.count;
     const std::vector<glm::vec3> positions = readVec3Attribute(ctx_, source.position, where, "POSITION");
     if (positions.size() > std::numeric_limits<uint32_t>::max() - mesh_.positions.size()) {
       fail(ctx_, where, "the mesh has more vertices than 32-bit indices can address; split the mesh");
@@ -167,7 +172,8 @@ private:
       }
       mesh_.normals.resize(mesh_.positions.size(), glm::vec3(0.0f));
     }
-    baseOf_[source] = static_cast<uint32_t>(mesh_.positions.size());
+    const auto count = static_cast<uint32_t>(positions.size());
+    verticesOf_[source] = {static_cast<uint32_t>(mesh_.positions.size()), count};
     mesh_.positions.insert(mesh_.positions.end(), positions.begin(), positions.end());
     if (source.normal >= 0 || !mesh_.normals.empty()) {
       mesh_.normals.insert(mesh_.normals.end(), normals.begin(), normals.end());
@@ -175,7 +181,7 @@ private:
     if (source.uv >= 0 || !mesh_.uvs.empty()) {
       std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
       if (source.uv >= 0) {
-        uvs = readTexCoords(ctx_, source.uv, where);
+        uvs = readTexCoords(ctx_, source.uv, where, "TEXCOORD_0");
         if (uvs.size() != positions.size()) {
           fail(ctx_, where,
                "TEXCOORD_0 has " + std::to_string(uvs.size()) + " vertices but POSITION " +
@@ -271,7 +277,7 @@ private:
   MeshDeformation* deformation_;  // null: rigid
   std::string where_;
   Mesh mesh_;
-  std::map<VertexSource, uint32_t> baseOf_;  // accessors -> their first vertex in mesh_
+  std::map<VertexSource, VertexRange> verticesOf_;
   std::string skipped_;
   size_t skippedCount_ = 0;
 };

@@ -1,4 +1,4 @@
-// Morph targets and skinning of a mesh's vertices on the host (why the host: README, Animation).
+// Morph targets and skinning of a mesh's vertices on the host (why the host: docs/animation.md).
 #pragma once
 
 #include <vector>

@@ -6,14 +6,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <thread>
+#include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace wp::test {
 namespace {
@@ -53,6 +55,19 @@ RunResult runWavepath(const std::vector<std::string>& args, const std::vector<st
   result.out = slurp(dir / "out");
   result.err = slurp(dir / "err");
   return result;
+}
+
+void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code) {
+  EXPECT_EQ(r.exitCode, code) << r.err;
+  std::string lastLine = r.err;
+  while (!lastLine.empty() && lastLine.back() == '\n') {
+    lastLine.pop_back();
+  }
+  size_t nl = lastLine.rfind('\n');
+  lastLine = nl == std::string::npos ? lastLine : lastLine.substr(nl + 1);
+  EXPECT_EQ(lastLine.rfind("wavepath: error: ", 0), 0u) << r.err;
+  EXPECT_NE(lastLine.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line: " << r.err;
 }
 
 WavepathProcess startWavepath(const std::vector<std::string>& args) {

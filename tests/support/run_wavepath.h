@@ -20,6 +20,10 @@ struct RunResult {
 RunResult runWavepath(const std::vector<std::string>& args, const std::vector<std::string>& env = {},
                       int timeoutSeconds = 600);
 
+// Expects exactly one line on stderr, "wavepath: error: ..." containing `phrase`, and exit
+// code `code` (1: bad input or device, 2: bad flags).
+void expectOneErrorLine(const RunResult& r, const std::string& phrase, int code = 1);
+
 // A wavepath started in the background (as runWavepath starts it, without the timeout
 // wrapper, so signals reach wavepath itself).
 struct WavepathProcess {

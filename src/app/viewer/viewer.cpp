@@ -399,8 +399,9 @@ int runView(ViewOptions v) {
       throw Error("--window-capture '" + v.windowCapture + "' must end in .png; the window is an 8-bit image");
     }
   }
+  // The window system first: without one the user learns it before any scene or GPU work.
+  requireWindowSystem();
   PreparedScene prepared = prepareScene(v.render);
-  // The window first: without a window system the user learns it before any GPU work.
   Window window(v.render.settings.width, v.render.settings.height,
                 "wavepath view " + std::filesystem::path(v.render.scene).filename().string());
   BackendChoice choice{v.render.backend, v.render.device, validate, v.render.clDispatch};

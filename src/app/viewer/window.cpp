@@ -21,7 +21,7 @@ void failNoWindow(const std::string& reason) {
   throw Error("cannot open a window: " + reason + "; run 'wavepath render' to render without a window");
 }
 
-Window::Window(uint32_t width, uint32_t height, const std::string& title) {
+void requireWindowSystem() {
   glfwSetErrorCallback(onGlfwError);
   if (!glfwInit()) {
     failNoWindow("no window system (" + gLastGlfwError + "; is DISPLAY set?)");
@@ -30,6 +30,10 @@ Window::Window(uint32_t width, uint32_t height, const std::string& title) {
     glfwTerminate();
     failNoWindow("GLFW found no Vulkan loader that can present");
   }
+}
+
+Window::Window(uint32_t width, uint32_t height, const std::string& title) {
+  requireWindowSystem();
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   handle = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);

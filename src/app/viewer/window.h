@@ -11,6 +11,11 @@ namespace wp {
 // Initialises GLFW and opens a resizable window for Vulkan (no OpenGL context) of the given
 // size in pixels. Throws wp::Error, pointing to `wavepath render`, when there is no window
 // system (no DISPLAY), or GLFW finds no Vulkan loader able to present.
+// Throws wp::Error (pointing to `wavepath render`) unless a window system and a Vulkan
+// loader that can present to it are there; leaves GLFW initialised. Cheap: the viewer calls it
+// before loading the scene, so a missing display is the only thing the user hears.
+void requireWindowSystem();
+
 class Window {
 public:
   Window(uint32_t width, uint32_t height, const std::string& title);

@@ -7,22 +7,29 @@
 #include "backend/opencl/cl_check.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
-#include "shaders/opencl/bindings.h"
+#include "render/device_limits.h"
 
 namespace wp {
 namespace {
 
-// Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray and its
-// radiance.
-constexpr uint64_t kBytesPerPath =
-    2 * sizeof(gpu::PathRay) + sizeof(gpu::HitRecord) + sizeof(gpu::ShadowRay) + sizeof(glm::vec4);
-
-std::string mebibytes(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+// The kernels take one argument per binding that OpenCL uses (at the binding's index, the
+// table lists them first), then the pass constants.
+constexpr uint32_t kPassConstantsArgument = [] {
+  uint32_t count = 0;
+  for (const gpu::BindingInfo& b : gpu::kBindings) {
+    count += b.openCl ? 1 : 0;
+  }
+  return count;
+}();
 
 }  // namespace
 
 OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate)
     : context_(std::make_unique<OpenClContext>(deviceIndex)), dispatchMode_(dispatch), validate_(validate) {
+  const OpenClDeviceInfo& device = context_->device;
+  const ByteLimit allocation{device.maxAllocationBytes, "CL_DEVICE_MAX_MEM_ALLOC_SIZE"};
+  limits_ = withBufferCap({"OpenCL device '" + device.name + "'", allocation, allocation,
+                           {device.globalMemoryBytes, "CL_DEVICE_GLOBAL_MEM_SIZE"}});
   buildVariant(false);
 }
 
@@ -55,31 +62,26 @@ OpenClBackend::~OpenClBackend() {
 std::string OpenClBackend::deviceName() const { return context_->device.name + " (OpenCL)"; }
 
 uint32_t OpenClBackend::maxPathsInFlight() const {
-  const OpenClDeviceInfo& device = context_->device;
   // The two ray queues share the largest buffer; path state may take half the memory, the
   // rest is for the scene and the image.
-  uint64_t byAllocation = device.maxAllocationBytes / (2 * sizeof(gpu::PathRay));
-  uint64_t byMemory = device.globalMemoryBytes / 2 / kBytesPerPath;
+  uint64_t byAllocation = limits_.writable.bytes / (2 * sizeof(gpu::PathRay));
+  uint64_t byMemory = limits_.memory.bytes / 2 / kBytesPerPath;
   return uint32_t(std::min({byAllocation, byMemory, uint64_t(UINT32_MAX)}));
+}
+
+uint64_t OpenClBackend::pathStateBytes(uint64_t maxPaths) const {
+  return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters);
+}
+
+uint64_t OpenClBackend::maxAccumulationPixels(uint32_t maxPaths) const {
+  const uint64_t used = pathStateBytes(maxPaths);
+  const uint64_t byMemory = limits_.memory.bytes > used ? (limits_.memory.bytes - used) / kAccumulationBytesPerPixel : 0;
+  return std::min(limits_.writable.bytes / kAccumulationBytesPerPixel, byMemory);
 }
 
 void OpenClBackend::bind(uint32_t binding, const OpenClBuffer& buffer) {
   for (cl_kernel kernel : variants_[motion_].kernels) {
     CL_CHECK(clSetKernelArg(kernel, binding, sizeof(cl_mem), buffer.argument()));
-  }
-}
-
-void OpenClBackend::checkMemory(uint64_t bytes, uint64_t largest, const char* largestName) const {
-  const OpenClDeviceInfo& device = context_->device;
-  if (bytes > device.globalMemoryBytes) {
-    throw Error("the render needs " + mebibytes(bytes) + " of device memory but OpenCL device '" + device.name +
-                "' has " + mebibytes(device.globalMemoryBytes) +
-                "; lower the image size or --max-paths, or pick another --device");
-  }
-  if (largest > device.maxAllocationBytes) {
-    throw Error(std::string("the ") + largestName + " buffer (" + mebibytes(largest) +
-                ") exceeds the largest allocation OpenCL device '" + device.name + "' allows (" +
-                mebibytes(device.maxAllocationBytes) + "); lower the image size or --max-paths, or pick another --device");
   }
 }
 
@@ -100,30 +102,23 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
   }
   cl_context context = context_->context;
   const auto arrays = sceneArrays(scene);
+  const uint64_t bytes = checkSceneFits(limits_, arrays);
   for (size_t i = 0; i < arrays.size(); ++i) {
     sceneBuffers_[i] = OpenClBuffer(context, CL_MEM_READ_ONLY, arrays[i].bytes, arrays[i].data);
-  }
-  sceneBytes_ = 0;
-  uint64_t largest = 0;
-  for (uint32_t i = 0; i < sceneBuffers_.size(); ++i) {
-    sceneBytes_ += sceneBuffers_[i].size();
-    largest = std::max(largest, sceneBuffers_[i].size());
     bind(kSceneBindings[i], sceneBuffers_[i]);
   }
-  checkMemory(sceneBytes_, largest, "scene");
+  sceneBytes_ = bytes;
 }
 
 void OpenClBackend::configure(const gpu::RenderParams& params) {
   if (sceneBuffers_[0].handle() == nullptr) {
     throw Error("internal: OpenClBackend::configure called before loadScene");
   }
-  uint64_t maxPaths = params.counts.w;
-  uint64_t pixels = params.image.z;
+  uint64_t maxPaths = params.maxPaths;
+  uint64_t pixels = params.pixelCount;
   uint64_t rayBytes = 2 * maxPaths * sizeof(gpu::PathRay);
-  uint64_t accumulationBytes = 2 * pixels * sizeof(glm::vec4);
-  uint64_t total = sceneBytes_ + sizeof(params) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters) +
-                   accumulationBytes;
-  checkMemory(total, std::max(rayBytes, accumulationBytes), rayBytes >= accumulationBytes ? "ray queue" : "image");
+  uint64_t accumulationBytes = pixels * kAccumulationBytesPerPixel;
+  checkPathStateFits(limits_, rayBytes, pixels, pathStateBytes(maxPaths) + accumulationBytes);
 
   clFinish(context_->queue);
   cl_context context = context_->context;
@@ -135,7 +130,7 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
     pathRadiance_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(glm::vec4));
     counters_ = OpenClBuffer(context, CL_MEM_READ_WRITE, sizeof(gpu::QueueCounters));
   }
-  pixelCount_ = params.image.z;
+  pixelCount_ = params.pixelCount;
   accumulation_ = OpenClBuffer(context, CL_MEM_READ_WRITE, accumulationBytes);
   const float zero = 0.0f;
   CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,
@@ -145,19 +140,18 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
 }
 
 void OpenClBackend::bindPathState() {
-  bind(WP_BINDING_PARAMS, params_);
-  bind(WP_BINDING_RAYS, rays_);
-  bind(WP_BINDING_HITS, hits_);
-  bind(WP_BINDING_SHADOW_RAYS, shadowRays_);
-  bind(WP_BINDING_PATH_RADIANCE, pathRadiance_);
-  bind(WP_BINDING_COUNTERS, counters_);
-  bind(WP_BINDING_ACCUM, accumulation_);
+  bind(gpu::Binding::params, params_);
+  bind(gpu::Binding::rays, rays_);
+  bind(gpu::Binding::hits, hits_);
+  bind(gpu::Binding::shadowRays, shadowRays_);
+  bind(gpu::Binding::pathRadiance, pathRadiance_);
+  bind(gpu::Binding::counters, counters_);
+  bind(gpu::Binding::accumulation, accumulation_);
 }
 
-void OpenClBackend::beginPass() {
+void OpenClBackend::beginPass(const PassShape& shape) {
+  pass_ = shape;
   countersStale_ = true;
-  passPaths_ = 0;
-  passBounces_ = 0;
 }
 
 std::array<uint32_t, WP_COUNTER_WORDS> OpenClBackend::readCounters() {
@@ -167,9 +161,9 @@ std::array<uint32_t, WP_COUNTER_WORDS> OpenClBackend::readCounters() {
   return counters;
 }
 
-uint32_t OpenClBackend::queueThreads(uint32_t word, uint32_t pathCount) {
+uint32_t OpenClBackend::queueThreads(uint32_t word) {
   if (dispatchMode_ == ClDispatch::Max) {
-    return pathCount;
+    return pass_.paths;
   }
   if (countersStale_) {
     lastCounters_ = readCounters();
@@ -178,24 +172,16 @@ uint32_t OpenClBackend::queueThreads(uint32_t word, uint32_t pathCount) {
   return lastCounters_[word] * WP_WORKGROUP_SIZE;
 }
 
-void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) {
-  uint32_t pathCount = constants.pass.z;
-  uint32_t threads = size.threads;
-  if (size.source == DispatchSize::Source::RayQueue) {
-    threads = queueThreads(WP_COUNTER_EXTEND_DISPATCH, pathCount);
-  } else if (size.source == DispatchSize::Source::ShadowQueue) {
-    threads = queueThreads(WP_COUNTER_CONNECT_DISPATCH, pathCount);
-  }
-  passPaths_ = std::max(passPaths_, pathCount);
-  passBounces_ += kernel == Kernel::Extend;
-  // Generate and advance are the kernels that write the dispatch words.
-  countersStale_ = countersStale_ || kernel == Kernel::Generate || kernel == Kernel::Advance;
+void OpenClBackend::dispatch(const StageDispatch& stage) {
+  const DispatchSize& size = stage.size;
+  uint32_t threads = size.source == DispatchSize::Source::Queue ? queueThreads(size.argumentsWord) : size.threads;
+  countersStale_ = countersStale_ || stage.arguments == DispatchArguments::Written;
   if (threads == 0) {
     return;
   }
-  int k = static_cast<int>(kernel);
+  int k = static_cast<int>(stage.kernel);
   cl_kernel clKernel = variants_[motion_].kernels[k];
-  CL_CHECK(clSetKernelArg(clKernel, WP_ARG_PASS, sizeof(constants), &constants));
+  CL_CHECK(clSetKernelArg(clKernel, kPassConstantsArgument, sizeof(stage.constants), &stage.constants));
   size_t local = WP_WORKGROUP_SIZE;
   size_t global = (size_t(threads) + local - 1) / local * local;
   cl_event event = nullptr;
@@ -206,9 +192,9 @@ void OpenClBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants,
 void OpenClBackend::checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& words) const {
   // A queue never holds more than one entry per path, and each bounce traces at most one
   // ray and one shadow ray per path.
-  uint64_t paths = passPaths_;
-  bool inBounds = words[WP_COUNTER_TOTAL_RAYS] <= paths * passBounces_ &&
-                  words[WP_COUNTER_TOTAL_SHADOW_RAYS] <= paths * passBounces_;
+  uint64_t paths = pass_.paths;
+  bool inBounds = words[WP_COUNTER_TOTAL_RAYS] <= paths * pass_.bounces &&
+                  words[WP_COUNTER_TOTAL_SHADOW_RAYS] <= paths * pass_.bounces;
   std::string queues;
   for (uint32_t i = 0; i < 4; ++i) {
     inBounds = inBounds && words[WP_COUNTER_RAYS + i] <= paths;

@@ -13,6 +13,7 @@
 #include "backend/opencl/opencl_context.h"
 #include "backend/opencl/opencl_program.h"
 #include "render/backend.h"
+#include "render/device_limits.h"
 
 namespace wp {
 
@@ -20,8 +21,9 @@ namespace wp {
 enum class ClDispatch {
   // Every such launch covers all paths of the pass; work items past the queue length exit.
   Max,
-  // The host reads the queue lengths back after generate and advance (a wait each bounce)
-  // and launches exactly those, skipping empty queues.
+  // The host reads the queue lengths back after each stage that writes dispatch arguments
+  // (StageDispatch::arguments: generate and advance, a wait each bounce) and launches
+  // exactly those, skipping empty queues.
   Readback,
 };
 
@@ -34,11 +36,12 @@ public:
 
   std::string deviceName() const override;
   uint32_t maxPathsInFlight() const override;
+  uint64_t maxAccumulationPixels(uint32_t maxPaths) const override;
   void loadScene(const GpuScene& scene) override;
   bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
-  void beginPass() override;
-  void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
+  void beginPass(const PassShape& shape) override;
+  void dispatch(const StageDispatch& stage) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
   void writeAccumulation(const Accumulation& accumulation) override;
@@ -46,19 +49,20 @@ public:
 private:
   // Builds the program and kernels with (`motion`) or without WP_MOTION_BLUR.
   void buildVariant(bool motion);
-  // Sets kernel argument `binding` (layout.h) of every kernel of the current variant to `buffer`.
+  // Sets kernel argument `binding` (binding_table.h) of every kernel of the current variant to `buffer`.
   void bind(uint32_t binding, const OpenClBuffer& buffer);
-  // Work items for a launch sized by the queue whose dispatch word is `word`.
-  uint32_t queueThreads(uint32_t word, uint32_t pathCount);
+  // Work items for a launch sized by the dispatch arguments at counters word `word`.
+  uint32_t queueThreads(uint32_t word);
   // The counters buffer as words (WP_COUNTER_*), after everything enqueued so far.
   std::array<uint32_t, WP_COUNTER_WORDS> readCounters();
   // Binds the buffers configure made (everything but the scene) to the current variant.
   void bindPathState();
-  // Throws unless a buffer set of `bytes` in total, the largest `largest`, fits the device.
-  void checkMemory(uint64_t bytes, uint64_t largest, const char* largestName) const;
+  // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
+  uint64_t pathStateBytes(uint64_t maxPaths) const;
   void checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& counters) const;
 
   std::unique_ptr<OpenClContext> context_;
+  DeviceLimits limits_;  // the device's, with the testing cap (withBufferCap)
   // The stage kernels built without ([0]) and with ([1]) motion blur; [1] only once a
   // moving scene was loaded. motion_ picks the ones loadScene chose.
   struct Variant {
@@ -70,7 +74,6 @@ private:
   ClDispatch dispatchMode_;
   bool validate_;
 
-  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS.
   std::array<OpenClBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
   uint64_t sceneBytes_ = 0;
   OpenClBuffer params_;
@@ -82,13 +85,12 @@ private:
   OpenClBuffer accumulation_;
   uint32_t pixelCount_ = 0;
 
-  // The current pass: each launch's kernel and profiling event, the counters as last read
-  // back and whether a kernel that writes the dispatch words ran since.
+  // The current pass: its shape, each launch's kernel and profiling event, the counters as
+  // last read back and whether a stage that writes dispatch arguments ran since.
+  PassShape pass_;
   std::vector<std::pair<int, cl_event>> events_;
   std::array<uint32_t, WP_COUNTER_WORDS> lastCounters_{};
   bool countersStale_ = true;
-  uint32_t passPaths_ = 0;
-  uint32_t passBounces_ = 0;
 };
 
 }  // namespace wp

@@ -1,6 +1,8 @@
 // OpenCL buffer ownership.
 #include "backend/opencl/opencl_buffer.h"
 
+#include <array>
+#include <cstring>
 #include <utility>
 
 #include "backend/opencl/cl_check.h"
@@ -16,6 +18,13 @@ OpenClBuffer::OpenClBuffer(cl_context context, cl_mem_flags flags, uint64_t size
     : size_(size < kMinimumSize ? kMinimumSize : size) {
   cl_int result = CL_SUCCESS;
   bool copy = data != nullptr && size > 0;
+  // CL_MEM_COPY_HOST_PTR copies the whole buffer: a placeholder larger than the data is
+  // filled from a zeroed copy, never from past the end of `data`.
+  std::array<unsigned char, kMinimumSize> padded{};
+  if (copy && size < size_) {
+    std::memcpy(padded.data(), data, size);
+    data = padded.data();
+  }
   mem_ = clCreateBuffer(context, flags | (copy ? CL_MEM_COPY_HOST_PTR : 0), size_, copy ? const_cast<void*>(data) : nullptr,
                         &result);
   CL_CHECK(result);

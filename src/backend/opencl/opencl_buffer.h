@@ -10,8 +10,8 @@ namespace wp {
 class OpenClBuffer {
 public:
   OpenClBuffer() = default;
-  // A size of 0 allocates a small placeholder, so the buffer can still be a kernel
-  // argument; `data`, if given, is copied in.
+  // A size under 16 bytes allocates a 16-byte placeholder, so the buffer can still be a
+  // kernel argument; `data`, if given, is `size` bytes copied in (the rest zero).
   OpenClBuffer(cl_context context, cl_mem_flags flags, uint64_t size, const void* data = nullptr);
   ~OpenClBuffer();
   OpenClBuffer(OpenClBuffer&& other) noexcept;

@@ -51,27 +51,19 @@ SpirvCode spirvFor(Kernel kernel, bool motion) {
 }
 
 VkDescriptorType descriptorType(uint32_t binding) {
-  switch (binding) {
-    case WP_BINDING_PARAMS: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case WP_BINDING_NODES:
-    case WP_BINDING_TRIANGLES:
-    case WP_BINDING_INSTANCES:
-    case WP_BINDING_PLANES:
-    case WP_BINDING_MATERIALS:
-    case WP_BINDING_LIGHTS:
-    case WP_BINDING_ENV_RADIANCE:
-    case WP_BINDING_ENV_MARGINAL:
-    case WP_BINDING_ENV_CONDITIONAL:
-    case WP_BINDING_TRIANGLE_SHADING:
-    case WP_BINDING_TEXTURES:
-    case WP_BINDING_TEXELS:
-    case WP_BINDING_RAYS_READ:
-    case WP_BINDING_HITS_READ:
-    case WP_BINDING_SHADOW_RAYS_READ:
-    case WP_BINDING_BSDF_TABLES: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    default: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  switch (gpu::kBindings[binding].access) {
+    case gpu::BindingAccess::Uniform: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;  // bindings.glsl says why
+    case gpu::BindingAccess::Texels:
+    case gpu::BindingAccess::TexelView:
+    case gpu::BindingAccess::Constant: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    case gpu::BindingAccess::Storage:
+    case gpu::BindingAccess::Write: break;
   }
+  return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
+
+// Bytes of one texel of the view a texel-buffer binding is read through (bindings.glsl).
+uint64_t texelBytes(uint32_t binding) { return gpu::kBindings[binding].format == gpu::TexelFormat::R32ui ? 4 : 16; }
 
 // Storage for the queues, also read as texels by the next stage.
 constexpr VkBufferUsageFlags kQueueUsage =
@@ -88,9 +80,9 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
   }
   VkDevice device = context_->device;
 
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, WP_BINDING_COUNT},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, WP_BINDING_COUNT},
-                                  {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, WP_BINDING_COUNT}};
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, gpu::kBindingCount},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, gpu::kBindingCount},
+                                  {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, gpu::kBindingCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
   poolInfo.poolSizeCount = 3;
@@ -157,23 +149,36 @@ std::string VulkanBackend::deviceName() const {
 uint32_t VulkanBackend::maxPathsInFlight() const {
   const VkPhysicalDeviceLimits& limits = context_->properties.limits;
   uint64_t byDispatch = uint64_t(limits.maxComputeWorkGroupCount[0]) * WP_WORKGROUP_SIZE;
-  // The two ray queues share one buffer, bound whole as storage and as RGBA32UI texels.
-  uint64_t byStorage = limits.maxStorageBufferRange / (2 * sizeof(gpu::PathRay));
+  // The two ray queues share one buffer, bound whole as storage and as RGBA32UI texels; path
+  // state may take half the memory, the rest is for the scene and the image.
+  uint64_t byStorage = context_->limits.writable.bytes / (2 * sizeof(gpu::PathRay));
   uint64_t byTexels = uint64_t(limits.maxTexelBufferElements) / (2 * sizeof(gpu::PathRay) / 16);
-  return uint32_t(std::min({byDispatch, byStorage, byTexels, uint64_t(UINT32_MAX)}));
+  uint64_t byMemory = context_->limits.memory.bytes / 2 / kBytesPerPath;
+  return uint32_t(std::min({byDispatch, byStorage, byTexels, byMemory, uint64_t(UINT32_MAX)}));
+}
+
+uint64_t VulkanBackend::pathStateBytes(uint64_t maxPaths) const {
+  return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters);
+}
+
+uint64_t VulkanBackend::maxAccumulationPixels(uint32_t maxPaths) const {
+  const DeviceLimits& limits = context_->limits;
+  const uint64_t used = pathStateBytes(maxPaths);
+  const uint64_t byMemory = limits.memory.bytes > used ? (limits.memory.bytes - used) / kAccumulationBytesPerPixel : 0;
+  return std::min(limits.writable.bytes / kAccumulationBytesPerPixel, byMemory);
 }
 
 void VulkanBackend::createLayouts() {
   VkDevice device = context_->device;
-  std::vector<VkDescriptorSetLayoutBinding> bindings(WP_BINDING_COUNT);
-  for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
+  std::vector<VkDescriptorSetLayoutBinding> bindings(gpu::kBindingCount);
+  for (uint32_t i = 0; i < gpu::kBindingCount; ++i) {
     bindings[i].binding = i;
     bindings[i].descriptorType = descriptorType(i);
     bindings[i].descriptorCount = 1;
     bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layoutInfo.bindingCount = WP_BINDING_COUNT;
+  layoutInfo.bindingCount = gpu::kBindingCount;
   layoutInfo.pBindings = bindings.data();
   VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
 
@@ -221,10 +226,20 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   }
   motion_ = motion;
   const auto arrays = sceneArrays(scene);
+  const DeviceLimits& limits = context_->limits;
+  const uint64_t bytes = checkSceneFits(limits, arrays);
+  for (size_t i = 0; i < arrays.size(); ++i) {
+    const uint64_t texel = texelBytes(kSceneBindings[i]);
+    checkFits(limits, std::string("the scene's ") + arrays[i].name, arrays[i].bytes,
+              {context_->properties.limits.maxTexelBufferElements * texel, "maxTexelBufferElements"},
+              "render a smaller scene (fewer triangles, smaller textures or sky), or use --backend opencl");
+  }
+  sceneBytes_ = 0;  // nothing held while the old buffers go and the new ones come
   for (size_t i = 0; i < arrays.size(); ++i) {
     sceneBuffers_[i] = VulkanBuffer(*context_, arrays[i].bytes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
     sceneBuffers_[i].upload(arrays[i].data, arrays[i].bytes);
   }
+  sceneBytes_ = bytes;
   if (params_.handle() != VK_NULL_HANDLE) {
     writeDescriptors();
   }
@@ -234,13 +249,16 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   if (sceneBuffers_[0].handle() == VK_NULL_HANDLE) {
     throw Error("internal: VulkanBackend::configure called before loadScene");
   }
-  uint32_t maxPaths = params.counts.w;
+  uint32_t maxPaths = params.maxPaths;
   if (maxPaths > maxPathsInFlight()) {
     throw Error("internal: " + std::to_string(maxPaths) + " paths in flight exceed the device's " +
                 std::to_string(maxPathsInFlight()));
   }
+  const uint64_t accumulationBytes = uint64_t(params.pixelCount) * kAccumulationBytesPerPixel;
+  checkPathStateFits(context_->limits, 2ull * maxPaths * sizeof(gpu::PathRay), params.pixelCount,
+                     pathStateBytes(maxPaths) + accumulationBytes);
   vkDeviceWaitIdle(context_->device);
-  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memcpy(params_.mapped(), &params, sizeof(params));
 
   bool resized = rays_.handle() == VK_NULL_HANDLE || hits_.size() < maxPaths * sizeof(gpu::HitRecord);
@@ -253,9 +271,8 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
     counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
   }
-  pixelCount_ = params.image.z;
-  accumulation_ = VulkanBuffer(*context_, 2ull * pixelCount_ * sizeof(glm::vec4),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  pixelCount_ = params.pixelCount;
+  accumulation_ = VulkanBuffer(*context_, accumulationBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   context_->runOnce([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
   });
@@ -263,15 +280,15 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
 }
 
 void VulkanBackend::writeDescriptors() {
-  std::array<const VulkanBuffer*, WP_BINDING_COUNT> buffers{};
-  buffers[WP_BINDING_PARAMS] = &params_;
-  buffers[WP_BINDING_RAYS] = buffers[WP_BINDING_RAYS_READ] = &rays_;
-  buffers[WP_BINDING_HITS] = buffers[WP_BINDING_HITS_READ] = &hits_;
-  buffers[WP_BINDING_SHADOW_RAYS] = buffers[WP_BINDING_SHADOW_RAYS_READ] = &shadowRays_;
-  buffers[WP_BINDING_PATH_RADIANCE] = &pathRadiance_;
-  buffers[WP_BINDING_COUNTERS] = &counters_;
-  buffers[WP_BINDING_ACCUM] = &accumulation_;
-  buffers[WP_BINDING_BSDF_TABLES] = &bsdfTables_;
+  std::array<const VulkanBuffer*, gpu::kBindingCount> buffers{};
+  buffers[gpu::Binding::params] = &params_;
+  buffers[gpu::Binding::rays] = buffers[gpu::Binding::raysTexelView] = &rays_;
+  buffers[gpu::Binding::hits] = buffers[gpu::Binding::hitsTexelView] = &hits_;
+  buffers[gpu::Binding::shadowRays] = buffers[gpu::Binding::shadowRaysTexelView] = &shadowRays_;
+  buffers[gpu::Binding::pathRadiance] = &pathRadiance_;
+  buffers[gpu::Binding::counters] = &counters_;
+  buffers[gpu::Binding::accumulation] = &accumulation_;
+  buffers[gpu::Binding::bsdfTables] = &bsdfTables_;
   for (size_t i = 0; i < kSceneBindings.size(); ++i) {
     buffers[kSceneBindings[i]] = &sceneBuffers_[i];
   }
@@ -279,10 +296,10 @@ void VulkanBackend::writeDescriptors() {
     vkDestroyBufferView(context_->device, view, nullptr);
   }
   texelViews_.clear();
-  std::array<VkDescriptorBufferInfo, WP_BINDING_COUNT> infos;
-  std::array<VkBufferView, WP_BINDING_COUNT> views{};
-  std::array<VkWriteDescriptorSet, WP_BINDING_COUNT> writes;
-  for (uint32_t i = 0; i < WP_BINDING_COUNT; ++i) {
+  std::array<VkDescriptorBufferInfo, gpu::kBindingCount> infos;
+  std::array<VkBufferView, gpu::kBindingCount> views{};
+  std::array<VkWriteDescriptorSet, gpu::kBindingCount> writes;
+  for (uint32_t i = 0; i < gpu::kBindingCount; ++i) {
     VkDescriptorType type = descriptorType(i);
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = descriptorSet_;
@@ -290,31 +307,24 @@ void VulkanBackend::writeDescriptors() {
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = type;
     if (type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
-      // The sky's distributions are arrays of single floats; everything else is vec4s.
-      bool scalars = i == WP_BINDING_ENV_MARGINAL || i == WP_BINDING_ENV_CONDITIONAL || i == WP_BINDING_BSDF_TABLES;
-      views[i] = texelView(*buffers[i], scalars ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_UINT);
+      views[i] = texelView(*buffers[i], texelBytes(i) == 4 ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_UINT);
       writes[i].pTexelBufferView = &views[i];
     } else {
       infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
       writes[i].pBufferInfo = &infos[i];
     }
   }
-  vkUpdateDescriptorSets(context_->device, WP_BINDING_COUNT, writes.data(), 0, nullptr);
+  vkUpdateDescriptorSets(context_->device, gpu::kBindingCount, writes.data(), 0, nullptr);
 }
 
 VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer, VkFormat format) {
-  uint64_t texelBytes = format == VK_FORMAT_R32_UINT ? 4 : 16;
-  uint64_t texels = buffer.size() / texelBytes;
-  uint64_t limit = context_->properties.limits.maxTexelBufferElements;
-  if (texels > limit) {
-    throw Error("a scene or queue buffer of " + std::to_string(texels) + " texels exceeds this device's limit of " +
-                std::to_string(limit) + "; use a smaller scene or --max-paths");
-  }
+  // loadScene and maxPathsInFlight keep every buffer within maxTexelBufferElements.
+  uint64_t bytesPerTexel = format == VK_FORMAT_R32_UINT ? 4 : 16;
   VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
   info.buffer = buffer.handle();
   info.format = format;
   info.offset = 0;
-  info.range = texels * texelBytes;
+  info.range = buffer.size() / bytesPerTexel * bytesPerTexel;
   VkBufferView view;
   VK_CHECK(vkCreateBufferView(context_->device, &info, nullptr, &view));
   texelViews_.push_back(view);
@@ -338,7 +348,7 @@ void VulkanBackend::timestamp(int kernel) {
   queryKernels_.push_back(kernel);
 }
 
-void VulkanBackend::beginPass() {
+void VulkanBackend::beginPass(const PassShape&) {
   VK_CHECK(vkResetCommandBuffer(commandBuffer_, 0));
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -359,25 +369,25 @@ void VulkanBackend::beginPass() {
   recordedDispatch_ = false;
 }
 
-void VulkanBackend::dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) {
+void VulkanBackend::dispatch(const StageDispatch& stage) {
   if (recordedDispatch_) {
     // Each stage reads what the previous ones wrote, including indirect dispatch sizes.
     barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
   }
   recordedDispatch_ = true;
-  int k = static_cast<int>(kernel);
+  int k = static_cast<int>(stage.kernel);
   vkCmdBindPipeline(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[k]);
-  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(stage.constants),
+                     &stage.constants);
+  // The barrier before every dispatch makes arguments written by an earlier stage visible.
+  const DispatchSize& size = stage.size;
   switch (size.source) {
     case DispatchSize::Source::Host:
       vkCmdDispatch(commandBuffer_, (size.threads + WP_WORKGROUP_SIZE - 1) / WP_WORKGROUP_SIZE, 1, 1);
       break;
-    case DispatchSize::Source::RayQueue:
-      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), WP_COUNTER_EXTEND_DISPATCH * sizeof(uint32_t));
-      break;
-    case DispatchSize::Source::ShadowQueue:
-      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), WP_COUNTER_CONNECT_DISPATCH * sizeof(uint32_t));
+    case DispatchSize::Source::Queue:
+      vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), size.argumentsWord * sizeof(uint32_t));
       break;
   }
   timestamp(k);
@@ -404,8 +414,8 @@ PassResult VulkanBackend::endPass() {
   gpu::QueueCounters counters;
   std::memcpy(&counters, countersReadback_.mapped(), sizeof(counters));
   PassResult result;
-  result.extensionRays = counters.totals.x;
-  result.shadowRays = counters.totals.y;
+  result.extensionRays = gpu::tracedRays(counters);
+  result.shadowRays = gpu::tracedShadowRays(counters);
   if (queryPool_ != VK_NULL_HANDLE && queryKernels_.size() > 1) {
     std::vector<uint64_t> ticks(queryKernels_.size());
     VK_CHECK(vkGetQueryPoolResults(context_->device, queryPool_, 0, static_cast<uint32_t>(ticks.size()),

@@ -20,16 +20,19 @@ public:
 
   std::string deviceName() const override;
   uint32_t maxPathsInFlight() const override;
+  uint64_t maxAccumulationPixels(uint32_t maxPaths) const override;
   void loadScene(const GpuScene& scene) override;
   bool motionKernels() const override { return motion_; }
   void configure(const gpu::RenderParams& params) override;
-  void beginPass() override;
-  void dispatch(Kernel kernel, const gpu::PassConstants& constants, DispatchSize size) override;
+  void beginPass(const PassShape& shape) override;
+  void dispatch(const StageDispatch& stage) override;
   PassResult endPass() override;
   Accumulation readAccumulation() override;
   void writeAccumulation(const Accumulation& accumulation) override;
 
 private:
+  // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
+  uint64_t pathStateBytes(uint64_t maxPaths) const;
   void createLayouts();
   // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout.
   VkPipeline createPipeline(const uint32_t* words, size_t bytes);
@@ -51,9 +54,6 @@ private:
   VkQueryPool queryPool_ = VK_NULL_HANDLE;
   std::vector<VkBufferView> texelViews_;
 
-  // Scene buffers, in binding order WP_BINDING_NODES .. WP_BINDING_LIGHTS, then the sky's
-  // WP_BINDING_ENV_RADIANCE .. WP_BINDING_ENV_CONDITIONAL, then WP_BINDING_TRIANGLE_SHADING ..
-  // WP_BINDING_TEXELS.
   std::array<VulkanBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
   VulkanBuffer bsdfTables_;  // gpu::kBsdfTables (energy_compensation.h)
   VulkanBuffer params_;
@@ -66,6 +66,7 @@ private:
   VulkanBuffer accumulation_;
   VulkanBuffer accumulationReadback_;  // staging kept across readAccumulation calls (the viewer's frames)
   uint32_t pixelCount_ = 0;
+  uint64_t sceneBytes_ = 0;  // of the loaded scene's arrays
 
   // Kernel of each timestamp written in the current pass (query i ends kernel i's span).
   std::vector<int> queryKernels_;

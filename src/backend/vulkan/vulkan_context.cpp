@@ -1,6 +1,7 @@
 // Vulkan instance, device selection, compute queue and validation messages.
 #include "backend/vulkan/vulkan_context.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstring>
@@ -172,8 +173,12 @@ std::string missingRequirement(VkPhysicalDevice device) {
   return "";
 }
 
+const ByteLimit& smaller(const ByteLimit& a, const ByteLimit& b) { return a.bytes <= b.bytes ? a : b; }
+
 VulkanDeviceInfo describe(VkPhysicalDevice device) {
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  driver.pNext = &maintenance3;
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props.pNext = &driver;
   vkGetPhysicalDeviceProperties2(device, &props);
@@ -184,11 +189,21 @@ VulkanDeviceInfo describe(VkPhysicalDevice device) {
   info.type = typeName(props.properties.deviceType);
   info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
   info.apiVersion = props.properties.apiVersion;
+  uint64_t largestHeap = 0;
   for (uint32_t i = 0; i < memory.memoryHeapCount; ++i) {
     if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) {
       info.deviceLocalBytes += memory.memoryHeaps[i].size;
+      largestHeap = std::max<uint64_t>(largestHeap, memory.memoryHeaps[i].size);
     }
   }
+  // Every buffer is one allocation, from the device-local heap where there is one.
+  const VkPhysicalDeviceLimits& l = props.properties.limits;
+  const ByteLimit allocation{maintenance3.maxMemoryAllocationSize, "maxMemoryAllocationSize"};
+  info.limits.device = "Vulkan device '" + info.name + "'";
+  info.limits.writable = smaller({l.maxStorageBufferRange, "maxStorageBufferRange"}, allocation);
+  info.limits.sceneArray = allocation;
+  info.limits.memory = {largestHeap, "its device-local heap"};
+  info.maxTexelBufferElements = l.maxTexelBufferElements;
   return info;
 }
 
@@ -237,6 +252,7 @@ VulkanContext::VulkanContext(int deviceIndex, bool validation) {
     physicalDevice = devices[best];
     vkGetPhysicalDeviceProperties(physicalDevice, &properties);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice, &memoryProperties);
+    limits = withBufferCap(describe(physicalDevice).limits);
     std::string missing = missingRequirement(physicalDevice);
     if (!missing.empty()) {
       throw Error(std::string("Vulkan device '") + properties.deviceName + "' lacks " + missing +

@@ -7,6 +7,8 @@
 
 #include <volk.h>
 
+#include "render/device_limits.h"
+
 namespace wp {
 
 struct VulkanDeviceInfo {
@@ -15,6 +17,8 @@ struct VulkanDeviceInfo {
   std::string driver;  // driver name and version text
   uint32_t apiVersion = 0;
   uint64_t deviceLocalBytes = 0;
+  DeviceLimits limits;  // as the device reports them (no testing cap)
+  uint32_t maxTexelBufferElements = 0;
 };
 
 // A Vulkan 1.1 instance with `extensions` (and, with `validation`, the Khronos validation
@@ -61,6 +65,7 @@ public:
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memoryProperties{};
+  DeviceLimits limits;  // the device's, with the testing cap (withBufferCap)
   bool timestampsSupported = false;
 
 private:
