@@ -414,6 +414,38 @@ TEST_F(SceneTest, ConvertsMetallicRoughnessIorTransmissionVolumeAndLambert) {
   EXPECT_EQ(scene.materials[4].bsdf, wp::Material::Bsdf::Gltf);
 }
 
+TEST_F(SceneTest, ConvertsSpecularSheenClearcoatAndUnlit) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "extensionsUsed":["KHR_materials_specular","KHR_materials_sheen","KHR_materials_clearcoat","KHR_materials_unlit"],
+    "extensionsRequired":["KHR_materials_sheen","KHR_materials_unlit"],
+    "materials":[{"name":"default"},
+                 {"name":"layered","extensions":{
+                    "KHR_materials_specular":{"specularFactor":0.25,"specularColorFactor":[2,0.5,0]},
+                    "KHR_materials_sheen":{"sheenColorFactor":[0.5,0.25,1],"sheenRoughnessFactor":0.75},
+                    "KHR_materials_clearcoat":{"clearcoatFactor":0.5,"clearcoatRoughnessFactor":0.125}}},
+                 {"name":"flat","extensions":{"KHR_materials_unlit":{}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1},
+                             {"attributes":{"POSITION":0},"material":2}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.materials.size(), 3u);
+  const wp::Material& fallback = scene.materials[0];  // no layers, white full specular
+  EXPECT_FLOAT_EQ(fallback.specularWeight, 1.0f);
+  expectNear(fallback.specularColor, {1, 1, 1});
+  expectNear(fallback.sheenColor, {0, 0, 0});
+  EXPECT_FLOAT_EQ(fallback.clearcoat, 0.0f);
+  const wp::Material& layered = scene.materials[1];
+  EXPECT_FLOAT_EQ(layered.specularWeight, 0.25f);
+  expectNear(layered.specularColor, {2.0f, 0.5f, 0.0f});
+  expectNear(layered.sheenColor, {0.5f, 0.25f, 1.0f});
+  EXPECT_FLOAT_EQ(layered.sheenRoughness, 0.75f);
+  EXPECT_FLOAT_EQ(layered.clearcoat, 0.5f);
+  EXPECT_FLOAT_EQ(layered.clearcoatRoughness, 0.125f);
+  EXPECT_EQ(layered.clearcoatNormalTexture, -1);
+  EXPECT_EQ(layered.bsdf, wp::Material::Bsdf::Gltf);
+  EXPECT_EQ(scene.materials[2].bsdf, wp::Material::Bsdf::Unlit);
+}
+
 TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
   GltfFile file = triangleFile();
   auto errorOf = [&](const std::string& material) {
@@ -432,6 +464,18 @@ TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_volume":{"attenuationColor":[1,2,1]}}})")
                 .find("KHR_materials_volume.attenuationColor must be 3 numbers in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_sheen":{"sheenRoughnessFactor":1.5}}})")
+                .find("material 0: KHR_materials_sheen.sheenRoughnessFactor must be a number in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_specular":{"specularColorFactor":[1,-1,1]}}})")
+                .find("KHR_materials_specular.specularColorFactor must be 3 numbers in [0, 100]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_clearcoat":{"clearcoatNormalTexture":{"scale":2}}}})")
+                .find("KHR_materials_clearcoat.clearcoatNormalTexture needs an integer \"index\""),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_clearcoat":{"clearcoatTexture":{"index":7}}}})")
+                .find("material 0"),
             std::string::npos);
   const std::string extrasError = R"(a material's extras.wavepath must be {"bsdf": "lambert"} or {"diffuse": )";
   EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"bsdf":"phong"}}})").find(extrasError), std::string::npos);
@@ -1015,10 +1059,10 @@ TEST_F(SceneTest, WarnsOnceAboutUnsupportedUsedExtensions) {
   GltfFile file = triangleFile();
   std::string printed;
   load(file.json(R"(
-    "extensionsUsed":["KHR_texture_transform","KHR_materials_emissive_strength","KHR_materials_clearcoat"],)" +
+    "extensionsUsed":["KHR_texture_transform","KHR_materials_emissive_strength","KHR_materials_anisotropy"],)" +
                  kOneTriangle),
        &printed);
-  EXPECT_NE(printed.find("extensions KHR_texture_transform, KHR_materials_clearcoat ignored, the image may differ "
+  EXPECT_NE(printed.find("extensions KHR_texture_transform, KHR_materials_anisotropy ignored, the image may differ "
                          "from other viewers"),
             std::string::npos)
       << printed;

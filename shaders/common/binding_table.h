@@ -33,7 +33,7 @@
   X(triangles, 2, GpuTriangle, 4, RECORD, TEXELS, ALL)                            \
   X(instances, 3, GpuInstance, 4, RECORD, TEXELS, ALL)                            \
   X(planes, 4, GpuPlane, 2, RECORD, TEXELS, ALL)                                  \
-  X(materials, 5, GpuMaterial, 7, RECORD, TEXELS, ALL)                            \
+  X(materials, 5, GpuMaterial, 13, RECORD, TEXELS, ALL)                           \
   X(lights, 6, GpuLight, 6, RECORD, TEXELS, ALL)                                  \
   X(rays, 7, PathRay, 4, NONE, WRITE, ALL)                                        \
   X(hits, 8, HitRecord, 1, NONE, WRITE, ALL)                                      \

@@ -64,39 +64,60 @@ WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
   return r;
 }
 
+// The texture `index` at uv, or 1 (no texture: the factor alone).
+WP_FN vec4 textureOrOne(WP_BUFFERS uint index, vec2 uv) {
+  return index == WP_INVALID ? make_vec4(1.0f, 1.0f, 1.0f, 1.0f) : sampleTexture(WP_BUFFERS_ARG index, uv);
+}
+
+// The layered extensions' factors times their textures (layout.h says which channel).
+WP_FN GpuMaterial texturedLayers(WP_BUFFERS GpuMaterial m, vec2 uv) {
+  vec4 specularColor = textureOrOne(WP_BUFFERS_ARG materialSpecularColorTexture(m), uv);
+  float specular = textureOrOne(WP_BUFFERS_ARG materialSpecularTexture(m), uv).w;
+  m.specular = m.specular * make_vec4(specularColor.x, specularColor.y, specularColor.z, specular);
+  vec4 sheenColor = textureOrOne(WP_BUFFERS_ARG materialSheenColorTexture(m), uv);
+  float sheenRoughness = textureOrOne(WP_BUFFERS_ARG materialSheenRoughnessTexture(m), uv).w;
+  m.sheen = m.sheen * make_vec4(sheenColor.x, sheenColor.y, sheenColor.z, sheenRoughness);
+  m.clearcoat.x *= textureOrOne(WP_BUFFERS_ARG materialClearcoatTexture(m), uv).x;
+  m.clearcoat.y *= textureOrOne(WP_BUFFERS_ARG materialClearcoatRoughnessTexture(m), uv).y;
+  return m;
+}
+
 // The material at the hit with its vertex colour and textures applied (glTF: base colour
 // times COLOR_0 times the texture; metallic and roughness times the texture's blue and
-// green; emission times the emissive texture). Surfaces without TEXCOORD_0 (and spheres and
-// planes) use the constant factors.
+// green; emission times the emissive texture; the layered extensions' factors times their
+// textures' channels, as layout.h lists them). Surfaces without TEXCOORD_0 (and spheres and
+// planes) use the constant factors. An unlit material's emission is its base colour.
 WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
-  if (!s.hasUv) {
-    return m;
+  if (s.hasUv) {
+    vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
+    m.emission = make_vec4(emission.x, emission.y, emission.z, m.emission.w);
+    if (m.info.y != WP_INVALID) {
+      m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG m.info.y, s.uv);
+    }
+    if (m.info.z != WP_INVALID) {
+      vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.z, s.uv);
+      m.surface.x *= t.z;
+      m.surface.y *= t.y;
+    }
+    m = texturedLayers(WP_BUFFERS_ARG m, s.uv);
   }
-  vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, s.hasUv, s.uv);
-  m.emission = make_vec4(emission.x, emission.y, emission.z, m.emission.w);
-  if (m.info.y != WP_INVALID) {
-    m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG m.info.y, s.uv);
-  }
-  if (m.info.z != WP_INVALID) {
-    vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.z, s.uv);
-    m.surface.x *= t.z;
-    m.surface.y *= t.y;
+  if (m.info.x == WP_MATERIAL_UNLIT) {
+    m.emission = make_vec4(m.baseColor.x, m.baseColor.y, m.baseColor.z, m.emission.w);
   }
   return m;
 }
 
-// The shading normal tilted by the material's normal texture (glTF: tangent-space, +X along
-// the tangent, +Y "up" in the image, xy scaled by the texture's scale). The frame is the
+// The shading normal tilted by a normal texture of the material (glTF: tangent-space, +X
+// along the tangent, +Y "up" in the image, xy scaled by the texture's scale). The frame is the
 // file's TANGENT or else the triangle's own uv gradient (SurfaceHit), orthogonalized against
 // the interpolated normal. Falls back to the unmapped normal where there is no frame or the
 // result would face away from the geometric front.
-WP_FN vec3 normalMapped(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
-  if (m.info.w == WP_INVALID || !s.hasUv) {
+WP_FN vec3 normalMapped(WP_BUFFERS uint texture, float scale, SurfaceHit s) {
+  if (texture == WP_INVALID || !s.hasUv) {
     return s.shadingNormal;
   }
-  vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.w, s.uv);
-  float scale = m.normalMap.x;
+  vec4 t = sampleTexture(WP_BUFFERS_ARG texture, s.uv);
   vec3 tangentSpace = make_vec3((2.0f * t.x - 1.0f) * scale, (2.0f * t.y - 1.0f) * scale, 2.0f * t.z - 1.0f);
   vec3 n = s.shadingNormal;
   vec3 tangent = s.tangent - n * dot(n, s.tangent);
@@ -106,6 +127,18 @@ WP_FN vec3 normalMapped(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   }
   vec3 mapped = normalize(normalize(tangent) * tangentSpace.x + normalize(bitangent) * tangentSpace.y + n * tangentSpace.z);
   return dot(mapped, s.normal) > 0.0f ? mapped : n;
+}
+
+// The clear coat's normal in the local shading frame: the interpolated normal tilted by the
+// coat's own normal texture (glTF: the coat ignores the base's normal texture). A coat whose
+// normal would not face wo's side of the frame lies flat on the shading normal instead.
+WP_FN vec4 localCoatNormal(WP_BUFFERS GpuMaterial m, SurfaceHit s, Frame frame) {
+  if (!(materialClearcoat(m) > 0.0f)) {
+    return make_vec4(0.0f, 0.0f, 1.0f, 0.0f);
+  }
+  vec3 n = frameToLocal(frame, normalMapped(WP_BUFFERS_ARG materialClearcoatNormalTexture(m),
+                                            materialClearcoatNormalScale(m), s));
+  return n.z > WP_BSDF_MIN_COS ? make_vec4(n.x, n.y, n.z, 0.0f) : make_vec4(0.0f, 0.0f, 1.0f, 0.0f);
 }
 
 // True when wi is on the same side of the geometric surface as wo (product of the two
@@ -145,7 +178,8 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   float time = rayTime(ray);
   SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, time);
   GpuMaterial m = texturedMaterial(WP_BUFFERS_ARG WP_LOAD(materials, s.material), s);
-  s.shadingNormal = normalMapped(WP_BUFFERS_ARG m, s);
+  SurfaceHit unmapped = s;
+  s.shadingNormal = normalMapped(WP_BUFFERS_ARG m.info.w, m.normalMap.x, s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
@@ -186,6 +220,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   vec3 shadingNormal = woSide * dot(s.shadingNormal, wo) > 0.0f ? s.shadingNormal : s.normal;
   Frame frame = makeFrame(shadingNormal);
   vec3 woLocal = frameToLocal(frame, wo);
+  m.clearcoatNormal = localCoatNormal(WP_BUFFERS_ARG m, unmapped, frame);
 
   // Light sampling, in every mode but BSDF-only; there it still reaches the punctual lights,
   // which no BSDF sample can hit, and leaves the rest to BSDF sampling.
