@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "samples/gltf_samples.h"
 #include "support/image_stats.h"
@@ -84,6 +87,31 @@ TEST_P(MaterialSamples, ClearcoatAddsAWhiteHighlight) {
   const Summary without = summarize(renderSpheres(GetParam(), MaterialExtension::Clearcoat, false));
   std::printf("clearcoat: brightest green %.4f, without %.4f\n", with.brightest.y, without.brightest.y);
   EXPECT_GT(with.brightest.y, 2.0 * without.brightest.y);
+}
+
+// KHR_materials_clearcoat's clearcoatNormalTexture: the fourth sphere's coat has ripples
+// along u, which break its highlight into stripes; the same file with the texture's key
+// renamed (so the coat lies on the shading normal) renders a different highlight there.
+TEST_P(MaterialSamples, ClearcoatNormalTextureRipplesTheCoat) {
+  const std::filesystem::path dir = scratchDirectory("material-samples-coat-normal-" + GetParam());
+  const std::filesystem::path rippled = samples::writeMaterialSpheres(dir, MaterialExtension::Clearcoat, true);
+  std::string text;
+  {
+    std::ifstream in(rippled);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const size_t key = text.find("\"clearcoatNormalTexture\"");
+  ASSERT_NE(key, std::string::npos);
+  text.replace(key, std::string("\"clearcoatNormalTexture\"").size(), "\"notANormalTexture\"");
+  const std::filesystem::path flat = dir / "clearcoat-spheres-flat.gltf";
+  std::ofstream(flat) << text;
+  const std::vector<std::string> flags = {"--width", "128", "--height", "48", "--spp", "16", "--sky", "none",
+                                          "--max-depth", "0"};
+  const RadianceImage a = renderExr(GetParam(), rippled, flags);
+  const RadianceImage b = renderExr(GetParam(), flat, flags);
+  const double changed = changedFraction(a, b);
+  std::printf("coat normal texture: %.4f of the pixels changed\n", changed);
+  EXPECT_GT(changed, 0.005);
 }
 
 // KHR_materials_specular: an orange specularColorFactor (1, 0.6, 0.2) over blue plastic turns
