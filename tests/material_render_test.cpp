@@ -75,6 +75,9 @@ const MaterialCase kCases[] = {
     {"SmoothClearcoatOverMetal",
      withExtensions(gltfMaterial({0.9f, 0.6f, 0.3f}, 1.0f, 0.5f), R"("KHR_materials_clearcoat": {"clearcoatFactor": 0.8})"),
      96, true},
+    // Lights the floor only through BSDF-sampled rays (it is no light for NEE): the same
+    // weight 1 in every mode.
+    {"Unlit", withExtensions(gltfMaterial({0.9f, 0.6f, 0.2f}, 0.0f, 0.5f), R"("KHR_materials_unlit": {})")},
 };
 
 // A sphere of the material on a grey Lambertian floor, lit by a large one-sided area light
