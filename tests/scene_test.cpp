@@ -446,6 +446,36 @@ TEST_F(SceneTest, ConvertsSpecularSheenClearcoatAndUnlit) {
   EXPECT_EQ(scene.materials[2].bsdf, wp::Material::Bsdf::Unlit);
 }
 
+// KHR_materials_variants: --variant NAME picks each primitive's mapped material; a primitive
+// without a mapping for it, and every primitive without --variant, keeps its own.
+TEST_F(SceneTest, MaterialVariantsPickMappedMaterials) {
+  GltfFile file = triangleFile();
+  const std::string json = file.json(R"(
+    "extensionsUsed":["KHR_materials_variants"],
+    "extensions":{"KHR_materials_variants":{"variants":[{"name":"red"},{"name":"blue"}]}},
+    "materials":[{"name":"default"},{"name":"red"},{"name":"blue"}],
+    "meshes":[{"primitives":[
+      {"attributes":{"POSITION":0},"material":0,
+       "extensions":{"KHR_materials_variants":{"mappings":[{"material":1,"variants":[0]},{"material":2,"variants":[1]}]}}},
+      {"attributes":{"POSITION":0},"material":0,
+       "extensions":{"KHR_materials_variants":{"mappings":[{"material":2,"variants":[1]}]}}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])");
+  const auto materialsOf = [&](const std::string& variant) {
+    wp::LoadOptions options;
+    options.variant = variant;
+    const Scene scene = load(json, nullptr, options);
+    return std::vector<uint32_t>(scene.meshes.at(0).materials);
+  };
+  EXPECT_EQ(materialsOf(""), (std::vector<uint32_t>{0, 0}));
+  EXPECT_EQ(materialsOf("red"), (std::vector<uint32_t>{1, 0}));
+  EXPECT_EQ(materialsOf("blue"), (std::vector<uint32_t>{2, 2}));
+  wp::LoadOptions green;
+  green.variant = "green";
+  EXPECT_NE(errorOfJson(json, green)
+                .find("--variant 'green' is not a KHR_materials_variants variant of the file (it has 'red', 'blue')"),
+            std::string::npos);
+}
+
 TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
   GltfFile file = triangleFile();
   auto errorOf = [&](const std::string& material) {

@@ -9,7 +9,7 @@
 namespace wp::gltf {
 
 // Every extension the loader implements. Add an entry here when the loader learns one.
-inline constexpr std::array<std::string_view, 13> kSupportedExtensions{
+inline constexpr std::array<std::string_view, 14> kSupportedExtensions{
     "EXT_meshopt_compression",
     "EXT_texture_webp",
     "KHR_draco_mesh_compression",
@@ -21,6 +21,7 @@ inline constexpr std::array<std::string_view, 13> kSupportedExtensions{
     "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_materials_unlit",
+    "KHR_materials_variants",
     "KHR_materials_volume",
     "KHR_mesh_quantization",
 };
