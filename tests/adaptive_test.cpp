@@ -72,7 +72,9 @@ TEST_P(Adaptive, FlatPixelsStopEarlyNoisyOnesGoOnAndTheImageAgrees) {
     ASSERT_GE(n, float(kMinSamples)) << "pixel " << i;
     ASSERT_LE(n, float(kSpp)) << "pixel " << i;
     EXPECT_EQ((uint32_t(n) - kMinSamples) % kInterval == 0 || n == float(kSpp), true) << "pixel " << i << ": " << n;
-    if (n < float(kSpp)) EXPECT_LT(relativeError(adaptive, i), kThreshold * 1.001) << "pixel " << i << ": " << n;
+    if (n < float(kSpp)) {
+      EXPECT_LT(relativeError(adaptive, i), kThreshold * 1.001) << "pixel " << i << ": " << n;
+    }
     if (full.variance[i] == glm::vec3(0.0f)) {
       // The sky: one radiance in every sample, so it stops at the first check, with the
       // same value as the render of every sample.

@@ -19,7 +19,8 @@ struct MaterialCase {
   const char* name;
   TestMaterial material;
   // Samples per pixel: NEE alone finds light through rough glass only from inside it, so
-  // the glass cases need more samples to get the noise well below the signal.
+  // the glass cases need more samples to get the noise well below the signal; so does NEE
+  // alone on a glossy coat, which reflects the light into the floor's dark channels.
   int spp = 96;
   // A coarse sphere with vertex normals (smooth shading) instead of a finer flat one.
   bool smoothShaded = false;
@@ -44,6 +45,12 @@ TestMaterial absorbingGlass() {
   return m;
 }
 
+// A glTF material with more extensions (KHR_materials_specular, _sheen, _clearcoat).
+TestMaterial withExtensions(TestMaterial m, const char* extensions) {
+  m.moreExtensions = extensions;
+  return m;
+}
+
 // Smooth (roughness 0) lobes are delta lobes: they cover the cases where light sampling
 // must leave a direction to BSDF sampling even in NEE-only mode.
 const MaterialCase kCases[] = {
@@ -56,6 +63,21 @@ const MaterialCase kCases[] = {
     {"AbsorbingSmoothGlass", absorbingGlass(), 256},
     {"SmoothShadedPlastic", gltfMaterial({0.8f, 0.1f, 0.1f}, 0.0f, 0.3f), 96, true},
     {"SmoothShadedGlass", gltfMaterial({1.0f, 1.0f, 1.0f}, 0.0f, 0.5f, 1.0f), 448, true},
+    {"TintedSpecular",
+     withExtensions(gltfMaterial({0.2f, 0.2f, 0.6f}, 0.0f, 0.3f),
+                    R"("KHR_materials_specular": {"specularFactor": 0.7, "specularColorFactor": [1, 0.6, 0.2]})")},
+    {"Sheen", withExtensions(gltfMaterial({0.1f, 0.1f, 0.4f}, 0.0f, 0.6f),
+                             R"("KHR_materials_sheen": {"sheenColorFactor": [1, 0.8, 0.5], "sheenRoughnessFactor": 0.4})")},
+    {"RoughClearcoat",
+     withExtensions(gltfMaterial({0.8f, 0.1f, 0.1f}, 0.0f, 0.7f),
+                    R"("KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatRoughnessFactor": 0.2})"),
+     192},
+    {"SmoothClearcoatOverMetal",
+     withExtensions(gltfMaterial({0.9f, 0.6f, 0.3f}, 1.0f, 0.5f), R"("KHR_materials_clearcoat": {"clearcoatFactor": 0.8})"),
+     96, true},
+    // Lights the floor only through BSDF-sampled rays (it is no light for NEE): the same
+    // weight 1 in every mode.
+    {"Unlit", withExtensions(gltfMaterial({0.9f, 0.6f, 0.2f}, 0.0f, 0.5f), R"("KHR_materials_unlit": {})")},
 };
 
 // A sphere of the material on a grey Lambertian floor, lit by a large one-sided area light

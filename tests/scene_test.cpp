@@ -414,6 +414,68 @@ TEST_F(SceneTest, ConvertsMetallicRoughnessIorTransmissionVolumeAndLambert) {
   EXPECT_EQ(scene.materials[4].bsdf, wp::Material::Bsdf::Gltf);
 }
 
+TEST_F(SceneTest, ConvertsSpecularSheenClearcoatAndUnlit) {
+  GltfFile file = triangleFile();
+  const Scene scene = load(file.json(R"(
+    "extensionsUsed":["KHR_materials_specular","KHR_materials_sheen","KHR_materials_clearcoat","KHR_materials_unlit"],
+    "extensionsRequired":["KHR_materials_sheen","KHR_materials_unlit"],
+    "materials":[{"name":"default"},
+                 {"name":"layered","extensions":{
+                    "KHR_materials_specular":{"specularFactor":0.25,"specularColorFactor":[2,0.5,0]},
+                    "KHR_materials_sheen":{"sheenColorFactor":[0.5,0.25,1],"sheenRoughnessFactor":0.75},
+                    "KHR_materials_clearcoat":{"clearcoatFactor":0.5,"clearcoatRoughnessFactor":0.125}}},
+                 {"name":"flat","extensions":{"KHR_materials_unlit":{}}}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1},
+                             {"attributes":{"POSITION":0},"material":2}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  ASSERT_EQ(scene.materials.size(), 3u);
+  const wp::Material& fallback = scene.materials[0];  // no layers, white full specular
+  EXPECT_FLOAT_EQ(fallback.specularWeight, 1.0f);
+  expectNear(fallback.specularColor, {1, 1, 1});
+  expectNear(fallback.sheenColor, {0, 0, 0});
+  EXPECT_FLOAT_EQ(fallback.clearcoat, 0.0f);
+  const wp::Material& layered = scene.materials[1];
+  EXPECT_FLOAT_EQ(layered.specularWeight, 0.25f);
+  expectNear(layered.specularColor, {2.0f, 0.5f, 0.0f});
+  expectNear(layered.sheenColor, {0.5f, 0.25f, 1.0f});
+  EXPECT_FLOAT_EQ(layered.sheenRoughness, 0.75f);
+  EXPECT_FLOAT_EQ(layered.clearcoat, 0.5f);
+  EXPECT_FLOAT_EQ(layered.clearcoatRoughness, 0.125f);
+  EXPECT_EQ(layered.clearcoatNormalTexture, -1);
+  EXPECT_EQ(layered.bsdf, wp::Material::Bsdf::Gltf);
+  EXPECT_EQ(scene.materials[2].bsdf, wp::Material::Bsdf::Unlit);
+}
+
+// KHR_materials_variants: --variant NAME picks each primitive's mapped material; a primitive
+// without a mapping for it, and every primitive without --variant, keeps its own.
+TEST_F(SceneTest, MaterialVariantsPickMappedMaterials) {
+  GltfFile file = triangleFile();
+  const std::string json = file.json(R"(
+    "extensionsUsed":["KHR_materials_variants"],
+    "extensions":{"KHR_materials_variants":{"variants":[{"name":"red"},{"name":"blue"}]}},
+    "materials":[{"name":"default"},{"name":"red"},{"name":"blue"}],
+    "meshes":[{"primitives":[
+      {"attributes":{"POSITION":0},"material":0,
+       "extensions":{"KHR_materials_variants":{"mappings":[{"material":1,"variants":[0]},{"material":2,"variants":[1]}]}}},
+      {"attributes":{"POSITION":0},"material":0,
+       "extensions":{"KHR_materials_variants":{"mappings":[{"material":2,"variants":[1]}]}}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])");
+  const auto materialsOf = [&](const std::string& variant) {
+    wp::LoadOptions options;
+    options.variant = variant;
+    const Scene scene = load(json, nullptr, options);
+    return std::vector<uint32_t>(scene.meshes.at(0).materials);
+  };
+  EXPECT_EQ(materialsOf(""), (std::vector<uint32_t>{0, 0}));
+  EXPECT_EQ(materialsOf("red"), (std::vector<uint32_t>{1, 0}));
+  EXPECT_EQ(materialsOf("blue"), (std::vector<uint32_t>{2, 2}));
+  wp::LoadOptions green;
+  green.variant = "green";
+  EXPECT_NE(errorOfJson(json, green)
+                .find("--variant 'green' is not a KHR_materials_variants variant of the file (it has 'red', 'blue')"),
+            std::string::npos);
+}
+
 TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
   GltfFile file = triangleFile();
   auto errorOf = [&](const std::string& material) {
@@ -432,6 +494,18 @@ TEST_F(SceneTest, RejectsMaterialExtensionValuesOutOfRange) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_volume":{"attenuationColor":[1,2,1]}}})")
                 .find("KHR_materials_volume.attenuationColor must be 3 numbers in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_sheen":{"sheenRoughnessFactor":1.5}}})")
+                .find("material 0: KHR_materials_sheen.sheenRoughnessFactor must be a number in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_specular":{"specularColorFactor":[1,-1,1]}}})")
+                .find("KHR_materials_specular.specularColorFactor must be 3 numbers in [0, 100]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_clearcoat":{"clearcoatNormalTexture":{"scale":2}}}})")
+                .find("KHR_materials_clearcoat.clearcoatNormalTexture needs an integer \"index\""),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"extensions":{"KHR_materials_clearcoat":{"clearcoatTexture":{"index":7}}}})")
+                .find("material 0"),
             std::string::npos);
   const std::string extrasError = R"(a material's extras.wavepath must be {"bsdf": "lambert"} or {"diffuse": )";
   EXPECT_NE(errorOf(R"({"extras":{"wavepath":{"bsdf":"phong"}}})").find(extrasError), std::string::npos);
@@ -633,8 +707,23 @@ TEST_F(SceneTest, ReadsTexCoordSetsAndTextureTransforms) {
   const glm::vec3 moved = transformed.uvTransform * glm::vec3(1, 0, 1);
   EXPECT_NEAR(moved.x, 0.25f, 1e-6f);
   EXPECT_NEAR(moved.y, 2.5f, 1e-6f);
+  // The layered extensions' textures are textureInfos too: their texCoord and transform hold.
+  const Scene layered = load(file.json(rest + R"("extensionsUsed":["KHR_materials_clearcoat","KHR_texture_transform"],
+    "materials":[{"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":1,
+      "clearcoatTexture":{"index":0,"texCoord":1},
+      "clearcoatRoughnessTexture":{"index":0,"extensions":{"KHR_texture_transform":{"offset":[0.5,0]}}}}}}])"));
+  const wp::Material& coat = layered.materials[0];
+  EXPECT_EQ(layered.textures.at(size_t(coat.clearcoatTexture)).texCoord, 1);
+  const wp::Texture& coatRoughness = layered.textures.at(size_t(coat.clearcoatRoughnessTexture));
+  EXPECT_EQ(coatRoughness.texCoord, 0);
+  EXPECT_NEAR((coatRoughness.uvTransform * glm::vec3(0, 0, 1)).x, 0.5f, 1e-6f);
   std::string printed;
   load(file.json(rest + R"("materials":[{"emissiveTexture":{"index":0,"texCoord":2}}])"), &printed);
+  EXPECT_NE(printed.find("TEXCOORD_2 or later"), std::string::npos) << printed;
+  printed.clear();
+  load(file.json(rest + R"("extensionsUsed":["KHR_materials_sheen"],"materials":[{"extensions":{
+      "KHR_materials_sheen":{"sheenColorFactor":[1,1,1],"sheenColorTexture":{"index":0,"texCoord":3}}}}])"),
+       &printed);
   EXPECT_NE(printed.find("TEXCOORD_2 or later"), std::string::npos) << printed;
   EXPECT_NE(errorOfJson(file.json(rest + R"("materials":[{"emissiveTexture":{"index":0,
       "extensions":{"KHR_texture_transform":{"scale":[1]}}}}])"))
@@ -1077,10 +1166,10 @@ TEST_F(SceneTest, WarnsOnceAboutUnsupportedUsedExtensions) {
   GltfFile file = triangleFile();
   std::string printed;
   load(file.json(R"(
-    "extensionsUsed":["EXT_lights_image_based","KHR_materials_emissive_strength","KHR_materials_clearcoat"],)" +
+    "extensionsUsed":["EXT_lights_image_based","KHR_materials_emissive_strength","KHR_materials_anisotropy"],)" +
                  kOneTriangle),
        &printed);
-  EXPECT_NE(printed.find("extensions EXT_lights_image_based, KHR_materials_clearcoat ignored, the image may differ "
+  EXPECT_NE(printed.find("extensions EXT_lights_image_based, KHR_materials_anisotropy ignored, the image may differ "
                          "from other viewers"),
             std::string::npos)
       << printed;

@@ -33,7 +33,7 @@
   X(triangles, 2, GpuTriangle, 4, RECORD, TEXELS, ALL)                            \
   X(instances, 3, GpuInstance, 4, RECORD, TEXELS, ALL)                            \
   X(planes, 4, GpuPlane, 2, RECORD, TEXELS, ALL)                                  \
-  X(materials, 5, GpuMaterial, 8, RECORD, TEXELS, ALL)                            \
+  X(materials, 5, GpuMaterial, 14, RECORD, TEXELS, ALL)                           \
   X(lights, 6, GpuLight, 6, RECORD, TEXELS, ALL)                                  \
   X(rays, 7, PathRay, 4, NONE, WRITE, ALL)                                        \
   X(hits, 8, HitRecord, 1, NONE, WRITE, ALL)                                      \
@@ -69,7 +69,7 @@
 //   triangleShading parallel to the triangles
 //   pathFeatures    PathFeatures[maxPaths]: the feature passes of each path of the pass
 //   texels          RGBA8 texels of every texture, r in the low byte
-//   bsdfTables      the BSDF's constant tables (energy_compensation.h), from the header's own
+//   bsdfTables      the BSDF's constant tables (bsdf_table_lookup.h), from the header's own
 //                   array. Vulkan only: OpenCL and C++ read that array as a constant, but
 //                   llvmpipe takes minutes to compile a shader that holds it.
 

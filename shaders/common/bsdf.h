@@ -19,6 +19,13 @@ WP_FN SurfaceMaterial surfaceMaterialOf(GpuMaterial m) {
   s.ior = m.surface.z;
   s.transmission = m.surface.w;
   s.disneyDiffuse = m.info.x == WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
+  s.specularWeight = materialSpecularWeight(m);
+  s.specularColor = materialSpecularColor(m);
+  s.sheenColor = materialSheenColor(m);
+  s.sheenRoughness = materialSheenRoughness(m);
+  s.clearcoat = materialClearcoat(m);
+  s.clearcoatRoughness = materialClearcoatRoughness(m);
+  s.clearcoatNormal = materialClearcoatNormal(m);
   return s;
 }
 
@@ -45,7 +52,11 @@ WP_FN MaterialSample sampleLambert(vec3 albedo, vec3 wo, vec2 u) {
 }
 
 // f |cos(theta_i)| and the density of wi under sampleBsdf with the same `flags` (WP_BSDF_*).
+// An unlit material scatters nothing (its colour is emission, integrator.h).
 WP_FN BsdfEval evalBsdf(GpuMaterial m, vec3 wo, vec3 wi, uint flags) {
+  if (m.info.x == WP_MATERIAL_UNLIT) {
+    return noEval();
+  }
   if (m.info.x == WP_MATERIAL_LAMBERT) {
     return evalLambert(albedoOf(m), wo, wi);
   }
@@ -59,6 +70,9 @@ WP_FN bool bsdfIsPerfectlySpecular(GpuMaterial m) {
 
 // u in [0, 1)^3; see sampleMaterial for delta samples.
 WP_FN MaterialSample sampleBsdf(GpuMaterial m, vec3 wo, vec3 u, uint flags) {
+  if (m.info.x == WP_MATERIAL_UNLIT) {
+    return noSample();
+  }
   if (m.info.x == WP_MATERIAL_LAMBERT) {
     return sampleLambert(albedoOf(m), wo, make_vec2(u.y, u.z));
   }

@@ -27,7 +27,7 @@ WP_FN BsdfEval evalMetal(vec3 f0, float roughness, vec3 wo, vec3 wi) {
   if (alpha < WP_DELTA_ALPHA || o.z < WP_BSDF_MIN_COS || i.z < WP_BSDF_MIN_COS) {
     return noEval();
   }
-  BsdfEval single = evalGgxReflection(f0, alpha, o, i);
+  BsdfEval single = evalGgxReflection(f0, 1.0f, alpha, o, i);
   float multipleShare = ggxMultipleScatteringShare(f0, roughness, o.z);
   BsdfEval e;
   e.fCos = single.fCos + ggxMultipleScattering(f0, roughness, o.z, i.z) * i.z;
@@ -69,29 +69,48 @@ WP_FN float disneyDiffuseFactor(float roughness, float cosO, float cosI, float c
   return lightScatter * viewScatter * energyFactor;
 }
 
+// The specular layer of glTF's dielectric: Schlick's curve from F0 at normal incidence to F90
+// at grazing. KHR_materials_specular tints F0 by specularColor and scales both by the
+// specular weight; without it specularColor and the weight are 1 and F0 comes from the IOR.
+WP_STRUCT(SpecularLayer)
+  vec3 f0;
+  float f90;
+WP_STRUCT_END(SpecularLayer)
+
+WP_FN SpecularLayer dielectricSpecular(float ior, vec3 specularColor, float specularWeight) {
+  SpecularLayer layer;
+  vec3 tinted = specularColor * f0FromIor(ior);
+  layer.f0 = min(tinted, make_vec3(1.0f, 1.0f, 1.0f)) * specularWeight;
+  layer.f90 = specularWeight;
+  return layer;
+}
+
+// The largest channel's F0, whose albedo is the layer's largest (energy_compensation.h).
+WP_FN float largestF0(SpecularLayer layer) { return max(layer.f0.x, max(layer.f0.y, layer.f0.z)); }
+
 // Monte Carlo Fresnel blending (the seed report's section 4.4): the specular lobe is picked
 // with probability E / (E + (1 - E) luminance(albedo)), E the specular layer's directional
 // albedo at cos(theta_o) (Schlick's F itself when smooth), i.e. by what the layer reflects
 // weighted against what the base returns, so a dark base does not waste samples on a lobe
 // that returns little. It depends on wo alone, so the pdf of any wi is computable on the
 // light-sampling side too.
-WP_FN float plasticSpecularProbability(vec3 albedo, float f0, float roughness, float cosO, uint flags) {
+WP_FN float plasticSpecularProbability(vec3 albedo, SpecularLayer layer, float roughness, float cosO, uint flags) {
   if ((flags & WP_BSDF_FIXED_LOBE_CHOICE) != 0u) {
     return 0.5f;
   }
-  float e = ggxSpecularAlbedo(f0, roughness, cosO);
+  float e = ggxSpecularAlbedo(largestF0(layer), layer.f90, roughness, cosO);
   float total = e + (1.0f - e) * luminance(albedo);
   return total > 0.0f ? e / total : 1.0f;
 }
 
 // glTF 2.0's dielectric_brdf (Appendix B): f = F(i.h) D V + albedo / pi * T(o, i), the
-// specular layer over a Lambertian base (or the Disney one, `disneyBase`), with F0 from the
-// IOR. glTF mixes the two by F(i.h); here the base gets T = specularLayerTransmission, the
-// energy the layer does not reflect on the way in and out (energy_compensation.h), which
-// keeps f reciprocal and a white base at albedo exactly 1 at every roughness, where the
-// spec's mix gives a smooth surface up to twice the light at grazing angles and a rough one
-// 7% too little.
-WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, float ior, bool disneyBase, uint flags, vec3 wo, vec3 wi) {
+// specular layer over a Lambertian base (or the Disney one, `disneyBase`). glTF mixes the two
+// by F(i.h); here the base gets T = specularLayerTransmission, the energy the layer does not
+// reflect on the way in and out (energy_compensation.h), which keeps f reciprocal and a
+// white base at albedo exactly 1 at every roughness, where the spec's mix gives a smooth
+// surface up to twice the light at grazing angles and a rough one 7% too little.
+WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, SpecularLayer layer, bool disneyBase, uint flags, vec3 wo,
+                           vec3 wi) {
   float side = sideOf(wo);
   vec3 o = mirrorZ(wo, side);
   vec3 i = mirrorZ(wi, side);
@@ -99,15 +118,14 @@ WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, float ior, bool disneyB
     return noEval();
   }
   float alpha = alphaFromRoughness(roughness);
-  float f0 = f0FromIor(ior);
   float base = disneyBase ? disneyDiffuseFactor(roughness, o.z, i.z, halfVectorOf(o, i).cosine) : 1.0f;
-  float diffuse = base * specularLayerTransmission(f0, roughness, o.z, i.z) * WP_INV_PI;
-  float specularProbability = plasticSpecularProbability(albedo, f0, roughness, o.z, flags);
+  float diffuse = base * specularLayerTransmission(largestF0(layer), layer.f90, roughness, o.z, i.z) * WP_INV_PI;
+  float specularProbability = plasticSpecularProbability(albedo, layer, roughness, o.z, flags);
   BsdfEval e;
   e.fCos = albedo * (diffuse * i.z);
   e.pdf = (1.0f - specularProbability) * cosineHemispherePdf(i.z);
   if (alpha >= WP_DELTA_ALPHA) {
-    BsdfEval specular = evalGgxReflection(make_vec3(f0, f0, f0), alpha, o, i);
+    BsdfEval specular = evalGgxReflection(layer.f0, layer.f90, alpha, o, i);
     e.fCos = e.fCos + specular.fCos;
     e.pdf += specularProbability * specular.pdf;
   }
@@ -115,21 +133,20 @@ WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, float ior, bool disneyB
 }
 
 // u.x picks the lobe, u.yz the direction.
-WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, float ior, bool disneyBase, uint flags, vec3 wo,
-                                   vec3 u) {
+WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, SpecularLayer layer, bool disneyBase, uint flags,
+                                   vec3 wo, vec3 u) {
   float side = sideOf(wo);
   vec3 o = mirrorZ(wo, side);
   if (o.z < WP_BSDF_MIN_COS) {
     return noSample();
   }
   float alpha = alphaFromRoughness(roughness);
-  float f0 = f0FromIor(ior);
-  float specularProbability = plasticSpecularProbability(albedo, f0, roughness, o.z, flags);
+  float specularProbability = plasticSpecularProbability(albedo, layer, roughness, o.z, flags);
   vec3 wi;
   if (u.x < specularProbability) {
     if (alpha < WP_DELTA_ALPHA) {
-      float f = fresnelSchlickScalar(f0, o.z) / specularProbability;
-      return deltaSample(mirrorDirection(o), make_vec3(f, f, f), specularProbability, side);
+      vec3 f = fresnelSchlickTo(layer.f0, layer.f90, o.z) / specularProbability;
+      return deltaSample(mirrorDirection(o), f, specularProbability, side);
     }
     wi = sampleGgxReflection(alpha, o, make_vec2(u.y, u.z));
   } else {
@@ -138,7 +155,7 @@ WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, float ior, bool
   if (wi.z < WP_BSDF_MIN_COS) {
     return noSample();
   }
-  return sampleFromEval(wi, evalPlastic(albedo, roughness, ior, disneyBase, flags, o, wi), side);
+  return sampleFromEval(wi, evalPlastic(albedo, roughness, layer, disneyBase, flags, o, wi), side);
 }
 
 // ---- Rough glass: Walter et al. 2007 with Beckmann normals -------------------------------

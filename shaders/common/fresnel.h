@@ -19,6 +19,12 @@ WP_FN vec3 fresnelSchlick(vec3 f0, float cosTheta) {
   return f0 + (make_vec3(1.0f, 1.0f, 1.0f) - f0) * schlickWeight(cosTheta);
 }
 
+// Schlick's curve from F0 at normal incidence to F90 at grazing (KHR_materials_specular's
+// weight scales both: F90 = specular).
+WP_FN vec3 fresnelSchlickTo(vec3 f0, float f90, float cosTheta) {
+  return f0 + (make_vec3(f90, f90, f90) - f0) * schlickWeight(cosTheta);
+}
+
 WP_FN float fresnelSchlickScalar(float f0, float cosTheta) { return f0 + (1.0f - f0) * schlickWeight(cosTheta); }
 
 // Reflectance at normal incidence of an interface between indices whose ratio is `eta`:

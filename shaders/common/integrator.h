@@ -78,11 +78,32 @@ WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
   return r;
 }
 
+// The texture `index` at the hit, or 1 where there is none or the surface lacks its
+// coordinate set (the factor alone).
+WP_FN vec4 textureOrOne(WP_BUFFERS uint index, TexCoords c) {
+  return textureApplies(WP_BUFFERS_ARG index, c) ? sampleTexture(WP_BUFFERS_ARG index, c)
+                                                 : make_vec4(1.0f, 1.0f, 1.0f, 1.0f);
+}
+
+// The layered extensions' factors times their textures (layout.h says which channel).
+WP_FN GpuMaterial texturedLayers(WP_BUFFERS GpuMaterial m, TexCoords c) {
+  vec4 specularColor = textureOrOne(WP_BUFFERS_ARG materialSpecularColorTexture(m), c);
+  float specular = textureOrOne(WP_BUFFERS_ARG materialSpecularTexture(m), c).w;
+  m.specular = m.specular * make_vec4(specularColor.x, specularColor.y, specularColor.z, specular);
+  vec4 sheenColor = textureOrOne(WP_BUFFERS_ARG materialSheenColorTexture(m), c);
+  float sheenRoughness = textureOrOne(WP_BUFFERS_ARG materialSheenRoughnessTexture(m), c).w;
+  m.sheen = m.sheen * make_vec4(sheenColor.x, sheenColor.y, sheenColor.z, sheenRoughness);
+  m.clearcoat.x *= textureOrOne(WP_BUFFERS_ARG materialClearcoatTexture(m), c).x;
+  m.clearcoat.y *= textureOrOne(WP_BUFFERS_ARG materialClearcoatRoughnessTexture(m), c).y;
+  return m;
+}
+
 // The material at the hit with its vertex colour and textures applied (glTF: base colour
 // times COLOR_0 times the texture; metallic and roughness times the texture's blue and
-// green; emission times the emissive texture), each texture on its own coordinate set and
+// green; emission times the emissive texture; the layered extensions' factors times their
+// textures' channels, as layout.h lists them), each texture on its own coordinate set and
 // transform. Where the surface lacks a texture's set (spheres and planes have none) its
-// factor stands alone.
+// factor stands alone. An unlit material's emission is its base colour.
 WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
   TexCoords c = s.texCoords;
@@ -96,20 +117,23 @@ WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
     m.surface.x *= t.z;
     m.surface.y *= t.y;
   }
+  m = texturedLayers(WP_BUFFERS_ARG m, c);
+  if (m.info.x == WP_MATERIAL_UNLIT) {
+    m.emission = make_vec4(m.baseColor.x, m.baseColor.y, m.baseColor.z, m.emission.w);
+  }
   return m;
 }
 
-// The shading normal tilted by the material's normal texture (glTF: tangent-space, +X along
-// the tangent, +Y "up" in the image, xy scaled by the texture's scale). The frame is the
+// The shading normal tilted by a normal texture of the material (glTF: tangent-space, +X
+// along the tangent, +Y "up" in the image, xy scaled by the texture's scale). The frame is the
 // file's TANGENT or else the triangle's own uv gradient (SurfaceHit), orthogonalized against
 // the interpolated normal. Falls back to the unmapped normal where there is no frame or the
 // result would face away from the geometric front.
-WP_FN vec3 normalMapped(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
-  if (!textureApplies(WP_BUFFERS_ARG m.info.w, s.texCoords)) {
+WP_FN vec3 normalMapped(WP_BUFFERS uint texture, float scale, SurfaceHit s) {
+  if (!textureApplies(WP_BUFFERS_ARG texture, s.texCoords)) {
     return s.shadingNormal;
   }
-  vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.w, s.texCoords);
-  float scale = m.normalMap.x;
+  vec4 t = sampleTexture(WP_BUFFERS_ARG texture, s.texCoords);
   vec3 tangentSpace = make_vec3((2.0f * t.x - 1.0f) * scale, (2.0f * t.y - 1.0f) * scale, 2.0f * t.z - 1.0f);
   vec3 n = s.shadingNormal;
   vec3 tangent = s.tangent - n * dot(n, s.tangent);
@@ -119,6 +143,18 @@ WP_FN vec3 normalMapped(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   }
   vec3 mapped = normalize(normalize(tangent) * tangentSpace.x + normalize(bitangent) * tangentSpace.y + n * tangentSpace.z);
   return dot(mapped, s.normal) > 0.0f ? mapped : n;
+}
+
+// The clear coat's normal in the local shading frame: the interpolated normal tilted by the
+// coat's own normal texture (glTF: the coat ignores the base's normal texture). A coat whose
+// normal would not face wo's side of the frame lies flat on the shading normal instead.
+WP_FN vec4 localCoatNormal(WP_BUFFERS GpuMaterial m, SurfaceHit s, Frame frame) {
+  if (!(materialClearcoat(m) > 0.0f)) {
+    return make_vec4(0.0f, 0.0f, 1.0f, 0.0f);
+  }
+  vec3 n = frameToLocal(frame, normalMapped(WP_BUFFERS_ARG materialClearcoatNormalTexture(m),
+                                            materialClearcoatNormalScale(m), s));
+  return n.z > WP_BSDF_MIN_COS ? make_vec4(n.x, n.y, n.z, 0.0f) : make_vec4(0.0f, 0.0f, 1.0f, 0.0f);
 }
 
 // True when wi is on the same side of the geometric surface as wo (product of the two
@@ -336,7 +372,8 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   vec3 throughput = rayThroughput(ray);
   SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, rayTime(ray));
   GpuMaterial m = texturedMaterial(WP_BUFFERS_ARG WP_LOAD(materials, s.material), s);
-  s.shadingNormal = normalMapped(WP_BUFFERS_ARG m, s);
+  SurfaceHit unmapped = s;
+  s.shadingNormal = normalMapped(WP_BUFFERS_ARG m.info.w, m.normalMap.x, s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
@@ -366,6 +403,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   if (takesFeatures) {
     v.rayFlags |= WP_RAY_FEATURES_TAKEN;
   }
+  m.clearcoatNormal = localCoatNormal(WP_BUFFERS_ARG m, unmapped, v.frame);
   uint rng = rayRngState(ray);
   if (samplesLights(params)) {
     RngDraw3 lightDraw = rngFloat3(rng);

@@ -311,8 +311,9 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
 #define WP_MATERIAL_LAMBERT 1u  // ideal diffuse (extras.wavepath.bsdf = "lambert")
 #define WP_MATERIAL_GLTF_DISNEY_DIFFUSE 2u  // the mixture with the seed's Disney diffuse base
                                             // (extras.wavepath.diffuse = "disney")
+#define WP_MATERIAL_UNLIT 3u  // KHR_materials_unlit: glows with its base colour, scatters nothing
 
-// A surface material, 128 bytes.
+// A surface material, 224 bytes.
 //   baseColor: rgb: linear base colour (albedo, metal F0, glass tint), a: alpha
 //   emission: rgb: emitted radiance (factor * strength); w: 1 if double-sided, else 0
 //   surface: x: metallic, y: perceptual roughness, z: ior, w: transmission
@@ -324,6 +325,18 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
 //   emissiveMap: x: emissive texture (sRGB, multiplies `emission`; WP_INVALID: none), yzw:
 //     unused
 //   alphaInfo: x: WP_ALPHA_* (glTF alphaMode), y: asUint(alphaCutoff), zw: unused
+// The layered extensions (material.h), white specular and no layers without them:
+//   specular: rgb: KHR_materials_specular specularColorFactor, w: specularFactor
+//   sheen: rgb: KHR_materials_sheen sheenColorFactor, w: sheenRoughnessFactor
+//   clearcoat: x: KHR_materials_clearcoat clearcoatFactor, y: clearcoatRoughnessFactor,
+//     z: the clearcoat normal texture's scale, w: unused
+//   clearcoatNormal: xyz: the coat's unit normal in the local shading frame; packed as
+//     (0, 0, 1), the shading normal, and set at the hit from the clearcoat normal texture
+//   layerMaps: textures (WP_INVALID: none) x: specularTexture (its alpha), y:
+//     specularColorTexture (sRGB), z: sheenColorTexture (sRGB), w: sheenRoughnessTexture
+//     (its alpha)
+//   clearcoatMaps: textures x: clearcoatTexture (red), y: clearcoatRoughnessTexture (green),
+//     z: clearcoatNormalTexture, w: unused
 #define WP_FIELDS_GpuMaterial(F) \
   F(vec4, baseColor)             \
   F(vec4, emission)              \
@@ -332,8 +345,31 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
   F(uvec4, info)                 \
   F(vec4, normalMap)             \
   F(uvec4, emissiveMap)          \
-  F(uvec4, alphaInfo)
+  F(uvec4, alphaInfo)            \
+  F(vec4, specular)              \
+  F(vec4, sheen)                 \
+  F(vec4, clearcoat)             \
+  F(vec4, clearcoatNormal)       \
+  F(uvec4, layerMaps)            \
+  F(uvec4, clearcoatMaps)
 WP_RECORD(GpuMaterial)
+WP_FN vec3 materialSpecularColor(GpuMaterial m) { return make_vec3(m.specular.x, m.specular.y, m.specular.z); }
+WP_FN float materialSpecularWeight(GpuMaterial m) { return m.specular.w; }
+WP_FN vec3 materialSheenColor(GpuMaterial m) { return make_vec3(m.sheen.x, m.sheen.y, m.sheen.z); }
+WP_FN float materialSheenRoughness(GpuMaterial m) { return m.sheen.w; }
+WP_FN float materialClearcoat(GpuMaterial m) { return m.clearcoat.x; }
+WP_FN float materialClearcoatRoughness(GpuMaterial m) { return m.clearcoat.y; }
+WP_FN float materialClearcoatNormalScale(GpuMaterial m) { return m.clearcoat.z; }
+WP_FN vec3 materialClearcoatNormal(GpuMaterial m) {
+  return make_vec3(m.clearcoatNormal.x, m.clearcoatNormal.y, m.clearcoatNormal.z);
+}
+WP_FN uint materialSpecularTexture(GpuMaterial m) { return m.layerMaps.x; }
+WP_FN uint materialSpecularColorTexture(GpuMaterial m) { return m.layerMaps.y; }
+WP_FN uint materialSheenColorTexture(GpuMaterial m) { return m.layerMaps.z; }
+WP_FN uint materialSheenRoughnessTexture(GpuMaterial m) { return m.layerMaps.w; }
+WP_FN uint materialClearcoatTexture(GpuMaterial m) { return m.clearcoatMaps.x; }
+WP_FN uint materialClearcoatRoughnessTexture(GpuMaterial m) { return m.clearcoatMaps.y; }
+WP_FN uint materialClearcoatNormalTexture(GpuMaterial m) { return m.clearcoatMaps.z; }
 
 // GpuMaterial alpha modes (glTF alphaMode): what the base colour's alpha means.
 #define WP_ALPHA_OPAQUE 0u  // nothing: the surface is opaque

@@ -46,6 +46,6 @@ layout(push_constant) uniform Push { PassConstants pc; };
 
 WP_BINDINGS(WP_GLSL_BINDING)
 
-// The BSDF's constant tables (energy_compensation.h reads WP_GGX_ALBEDO; C++ and OpenCL
+// The BSDF's constant tables (bsdf_table_lookup.h reads WP_BSDF_TABLE; C++ and OpenCL
 // index the header's array).
-#define WP_GGX_ALBEDO(i) WP_LOAD(bsdfTables, i)
+#define WP_BSDF_TABLE(i) WP_LOAD(bsdfTables, i)

@@ -29,6 +29,7 @@ struct RenderOptions {
   CameraFlags camera;
   std::string cameraName;               // --camera N|NAME: the file camera to look through
   std::optional<size_t> sceneIndex;     // --scene N: the glTF scene to render
+  std::string variant;                  // --variant NAME: a KHR_materials_variants variant
   std::string sky;                      // "none", or an .hdr or .exr sky; empty: the default rule
   std::optional<glm::vec3> skyColor;    // --sky-color R,G,B: a constant sky
   float skyIntensity = 1.0f;

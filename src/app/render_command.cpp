@@ -311,6 +311,8 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
                   "The file camera to look through: its index, or the name of the camera or of its node (default: "
                   "the first camera of the scene)");
   cmd->add_option("--scene", o.sceneIndex, "The glTF scene to render, by index (default: the file's default scene)");
+  cmd->add_option("--variant", o.variant,
+                  "The KHR_materials_variants variant to show, by name (default: the file's default materials)");
   cmd->add_option("--sky", o.sky,
                   "Equirectangular HDR sky (.hdr or .exr) lighting the scene from afar, or 'none' for no sky "
                   "(default: a white sky unless the scene has lamps or emitters brighter than it)");
@@ -343,6 +345,7 @@ Scene loadSceneWithSky(RenderOptions& o) {
   load.defaultSky = o.sky.empty() && !o.skyColor;
   load.scene = o.sceneIndex;
   load.camera = o.cameraName;
+  load.variant = o.variant;
   Scene scene = loadScene(o.scene, load);
   if (o.skyColor) {
     scene.sky = makeEnvironmentMap(1, 1, {*o.skyColor});

@@ -97,6 +97,7 @@ uint32_t gpuMaterialKind(Material::Bsdf bsdf) {
   switch (bsdf) {
     case Material::Bsdf::Lambert: return WP_MATERIAL_LAMBERT;
     case Material::Bsdf::GltfDisneyDiffuse: return WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
+    case Material::Bsdf::Unlit: return WP_MATERIAL_UNLIT;
     case Material::Bsdf::Gltf: break;
   }
   return WP_MATERIAL_GLTF;
@@ -521,7 +522,15 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
                     textureIndex(material.normalTexture)),
          glm::vec4(material.normalScale, 0.0f, 0.0f, 0.0f),
          glm::uvec4(textureIndex(material.emissiveTexture), 0u, 0u, 0u),
-         glm::uvec4(gpuAlphaMode(material.alphaMode), std::bit_cast<uint32_t>(material.alphaCutoff), 0u, 0u)});
+         glm::uvec4(gpuAlphaMode(material.alphaMode), std::bit_cast<uint32_t>(material.alphaCutoff), 0u, 0u),
+         glm::vec4(material.specularColor, material.specularWeight),
+         glm::vec4(material.sheenColor, material.sheenRoughness),
+         glm::vec4(material.clearcoat, material.clearcoatRoughness, material.clearcoatNormalScale, 0.0f),
+         glm::vec4(0.0f, 0.0f, 1.0f, 0.0f),
+         glm::uvec4(textureIndex(material.specularTexture), textureIndex(material.specularColorTexture),
+                    textureIndex(material.sheenColorTexture), textureIndex(material.sheenRoughnessTexture)),
+         glm::uvec4(textureIndex(material.clearcoatTexture), textureIndex(material.clearcoatRoughnessTexture),
+                    textureIndex(material.clearcoatNormalTexture), 0u)});
   }
   for (const Plane& plane : scene.planes) {
     out.planes.push_back({glm::vec4(plane.normal, plane.distance), glm::uvec4(plane.material, 0u, 0u, 0u)});

@@ -14,7 +14,7 @@ static_assert(sizeof(GpuTriangleShading) == 160);
 static_assert(sizeof(GpuTexture) == 48);
 static_assert(sizeof(GpuInstance) == 64);
 static_assert(sizeof(GpuPlane) == 32);
-static_assert(sizeof(GpuMaterial) == 128);
+static_assert(sizeof(GpuMaterial) == 224);
 static_assert(sizeof(GpuLight) == 96);
 static_assert(sizeof(ThinLens) == 80);
 static_assert(sizeof(GpuEnvironment) == 32);

@@ -11,6 +11,7 @@ namespace wp::gltf {
 struct Context {
   std::string file;  // the path as the user gave it; every message starts with it
   const tinygltf::Model& model;
+  int variant = -1;  // KHR_materials_variants: the variant shown (gltf_variants.h); -1: none
 };
 
 // "mesh 3 'Cube'", or "mesh 3" when the name is empty. Names are made printable and

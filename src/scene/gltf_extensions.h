@@ -9,14 +9,19 @@
 namespace wp::gltf {
 
 // Every extension the loader implements. Add an entry here when the loader learns one.
-inline constexpr std::array<std::string_view, 10> kSupportedExtensions{
+inline constexpr std::array<std::string_view, 15> kSupportedExtensions{
     "EXT_meshopt_compression",
     "EXT_texture_webp",
     "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
+    "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
     "KHR_materials_transmission",
+    "KHR_materials_unlit",
+    "KHR_materials_variants",
     "KHR_materials_volume",
     "KHR_mesh_quantization",
     "KHR_texture_transform",

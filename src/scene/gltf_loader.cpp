@@ -48,6 +48,7 @@
 #include "scene/gltf_lights.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_mesh.h"
+#include "scene/gltf_variants.h"
 #include "scene/gltf_nodes.h"
 #include "scene/scene_animation.h"
 #include "scene/scene_camera.h"
@@ -348,7 +349,8 @@ Scene loadScene(const std::filesystem::path& file, const LoadOptions& options) {
     ~FlushWarnings() { flushWarnings(); }
   } flush;
   tinygltf::Model model = gltf::parseGltfFile(file);
-  const gltf::Context ctx{file.string(), model};
+  gltf::Context ctx{file.string(), model};
+  ctx.variant = gltf::findVariant(ctx, options.variant);
   gltf::checkExtensions(ctx);
   gltf::decodeCompressedData(ctx, model);
   return SceneBuilder(ctx, options).build();

@@ -18,6 +18,9 @@ struct LoadOptions {
   // The camera to look through (--camera): a camera's index in the file, or the name of a
   // camera or of a node that places one; empty: the first camera of the scene's walk.
   std::string camera;
+  // KHR_materials_variants: the variant whose materials to show (--variant); empty: the
+  // file's default materials.
+  std::string variant;
 };
 
 // Loads a scene of a .gltf (external buffers or embedded data: URIs) or .glb file: triangle

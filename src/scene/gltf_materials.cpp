@@ -18,6 +18,10 @@ constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
 constexpr const char* kIor = "KHR_materials_ior";
 constexpr const char* kTransmission = "KHR_materials_transmission";
 constexpr const char* kVolume = "KHR_materials_volume";
+constexpr const char* kSpecular = "KHR_materials_specular";
+constexpr const char* kSheen = "KHR_materials_sheen";
+constexpr const char* kClearcoat = "KHR_materials_clearcoat";
+constexpr const char* kUnlit = "KHR_materials_unlit";
 
 bool allFinite(const std::vector<double>& values) {
   return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
@@ -44,10 +48,11 @@ double readNumber(const Context& ctx, const tinygltf::Material& material, const 
   return number;
 }
 
+// `extension.key` as 3 numbers in [0, hi], `fallback` where absent.
 glm::vec3 readColor(const Context& ctx, const tinygltf::Material& material, const char* extension, const char* key,
-                    const std::string& where) {
+                    glm::vec3 fallback, float hi, const std::string& where) {
   const tinygltf::Value& object = extensionOf(material, extension);
-  if (!object.Has(key)) return glm::vec3(1.0f);
+  if (!object.Has(key)) return fallback;
   const tinygltf::Value& value = object.Get(key);
   glm::vec3 color(-1.0f);
   if (value.IsArray() && value.ArrayLen() == 3) {
@@ -55,8 +60,10 @@ glm::vec3 readColor(const Context& ctx, const tinygltf::Material& material, cons
       if (value.Get(c).IsNumber()) color[c] = static_cast<float>(value.Get(c).GetNumberAsDouble());
     }
   }
-  if (!(glm::all(glm::greaterThanEqual(color, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(color, glm::vec3(1.0f))))) {
-    fail(ctx, where, std::string(extension) + "." + key + " must be 3 numbers in [0, 1]; fix the material");
+  if (!(glm::all(glm::greaterThanEqual(color, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(color, glm::vec3(hi))))) {
+    fail(ctx, where,
+         std::string(extension) + "." + key + " must be 3 numbers in [0, " + (hi == 1.0f ? "1" : "100") +
+             "]; fix the material");
   }
   return color;
 }
@@ -105,6 +112,21 @@ void readAlpha(const Context& ctx, const tinygltf::Material& material, const std
   out.alphaCutoff = static_cast<float>(material.alphaCutoff);
 }
 
+// The factors of KHR_materials_specular, _sheen and _clearcoat (glTF's defaults where absent:
+// white specular, no sheen, no coat). specularColorFactor may exceed 1 (the extension lets
+// it tint F0 above the IOR's); F0 is clamped to 1 where it is used (bsdf_models.h).
+void readLayers(const Context& ctx, const tinygltf::Material& material, const std::string& where, Material& out) {
+  const auto number = [&](const char* extension, const char* key, double fallback) {
+    return static_cast<float>(readNumber(ctx, material, extension, key, fallback, 0.0, 1.0, "in [0, 1]", where));
+  };
+  out.specularWeight = number(kSpecular, "specularFactor", 1.0);
+  out.specularColor = readColor(ctx, material, kSpecular, "specularColorFactor", glm::vec3(1.0f), 100.0f, where);
+  out.sheenColor = readColor(ctx, material, kSheen, "sheenColorFactor", glm::vec3(0.0f), 1.0f, where);
+  out.sheenRoughness = number(kSheen, "sheenRoughnessFactor", 0.0);
+  out.clearcoat = number(kClearcoat, "clearcoatFactor", 0.0);
+  out.clearcoatRoughness = number(kClearcoat, "clearcoatRoughnessFactor", 0.0);
+}
+
 Material convert(const Context& ctx, const tinygltf::Material& material, size_t index) {
   const std::string where = describe("material", index, material.name);
   const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
@@ -129,7 +151,7 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   out.ior = static_cast<float>(readNumber(ctx, material, kIor, "ior", 1.5, 1.0, 10.0, "in [1, 10]", where));
   out.transmission =
       static_cast<float>(readNumber(ctx, material, kTransmission, "transmissionFactor", 0.0, 0.0, 1.0, "in [0, 1]", where));
-  out.attenuationColor = readColor(ctx, material, kVolume, "attenuationColor", where);
+  out.attenuationColor = readColor(ctx, material, kVolume, "attenuationColor", glm::vec3(1.0f), 1.0f, where);
   out.attenuationDistance = static_cast<float>(readNumber(ctx, material, kVolume, "attenuationDistance",
                                                           std::numeric_limits<float>::max(), 1e-30,
                                                           std::numeric_limits<float>::max(), "> 0", where));
@@ -145,13 +167,68 @@ Material convert(const Context& ctx, const tinygltf::Material& material, size_t 
   }
   out.emission = glm::vec3(emission);
   out.doubleSided = material.doubleSided;
+  readLayers(ctx, material, where, out);
+  if (material.extensions.count(kUnlit) > 0) out.bsdf = Material::Bsdf::Unlit;
   return out;
+}
+
+// The texture an extension's textureInfo `key` names, added to `table`; -1 where absent.
+// It is read as a core textureInfo is (its texCoord and KHR_texture_transform); `ignored` is
+// set for one on a TEXCOORD set other than 0 and 1. A textureInfo that is not an object with an
+// integer index is an error.
+int readExtensionTexture(const Context& ctx, const tinygltf::Material& material, const char* extension, const char* key, bool srgb,
+                         const std::string& where, TextureTable& table, bool& ignored) {
+  const tinygltf::Value& object = extensionOf(material, extension);
+  if (!object.Has(key)) return -1;
+  const tinygltf::Value& info = object.Get(key);
+  if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) {
+    fail(ctx, where, std::string(extension) + "." + key + " needs an integer \"index\"; fix the material");
+  }
+  int texCoord = 0;
+  if (info.Has("texCoord")) {
+    if (!info.Get("texCoord").IsInt()) {
+      fail(ctx, where, std::string(extension) + "." + key + ".texCoord must be an integer; fix the material");
+    }
+    texCoord = info.Get("texCoord").GetNumberAsInt();
+  }
+  tinygltf::ExtensionMap extensions;  // KHR_texture_transform, as a core textureInfo has them
+  if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+    const tinygltf::Value& own = info.Get("extensions");
+    for (const std::string& name : own.Keys()) extensions[name] = own.Get(name);
+  }
+  const int added = table.add(info.Get("index").GetNumberAsInt(), texCoord, extensions, srgb, where);
+  ignored = ignored || added < 0;
+  return added;
+}
+
+// The layered extensions' textures; returns whether one is on a TEXCOORD set wavepath lacks.
+bool readLayerTextures(const Context& ctx, const tinygltf::Material& material, const std::string& where, TextureTable& table,
+                       Material& out) {
+  bool ignored = false;
+  const auto texture = [&](const char* extension, const char* key, bool srgb) {
+    return readExtensionTexture(ctx, material, extension, key, srgb, where, table, ignored);
+  };
+  out.specularTexture = texture(kSpecular, "specularTexture", false);
+  out.specularColorTexture = texture(kSpecular, "specularColorTexture", true);
+  out.sheenColorTexture = texture(kSheen, "sheenColorTexture", true);
+  out.sheenRoughnessTexture = texture(kSheen, "sheenRoughnessTexture", false);
+  out.clearcoatTexture = texture(kClearcoat, "clearcoatTexture", false);
+  out.clearcoatRoughnessTexture = texture(kClearcoat, "clearcoatRoughnessTexture", false);
+  out.clearcoatNormalTexture = texture(kClearcoat, "clearcoatNormalTexture", false);
+  const tinygltf::Value& coat = extensionOf(material, kClearcoat);
+  if (out.clearcoatNormalTexture >= 0 && coat.Get("clearcoatNormalTexture").Has("scale")) {
+    const tinygltf::Value& scale = coat.Get("clearcoatNormalTexture").Get("scale");
+    out.clearcoatNormalScale = scale.IsNumber() && std::isfinite(scale.GetNumberAsDouble())
+                                   ? static_cast<float>(scale.GetNumberAsDouble())
+                                   : 1.0f;
+  }
+  return ignored;
 }
 
 // Reads the base colour, metallic-roughness, normal and emissive textures into `table`, each
 // with its texCoord and KHR_texture_transform; returns whether the material has textures
 // that wavepath ignores (occlusion, or a texture on TEXCOORD_2 or later).
-bool readTextures(const tinygltf::Material& material, const std::string& where,
+bool readTextures(const Context& ctx, const tinygltf::Material& material, const std::string& where,
                   TextureTable& table, Material& out) {
   bool ignored = material.occlusionTexture.index >= 0;
   // The slot's index in `table` (-1: none), noting a texture it had to leave out.
@@ -167,7 +244,7 @@ bool readTextures(const tinygltf::Material& material, const std::string& where,
   out.baseColorTexture = slot(material.pbrMetallicRoughness.baseColorTexture, true);
   out.metallicRoughnessTexture = slot(material.pbrMetallicRoughness.metallicRoughnessTexture, false);
   out.emissiveTexture = slot(material.emissiveTexture, true);
-  return ignored;
+  return readLayerTextures(ctx, material, where, table, out) || ignored;
 }
 
 }  // namespace
@@ -179,7 +256,7 @@ std::vector<Material> convertMaterials(const Context& ctx, std::vector<Texture>&
   for (size_t i = 0; i < ctx.model.materials.size(); ++i) {
     const tinygltf::Material& material = ctx.model.materials[i];
     materials.push_back(convert(ctx, material, i));
-    ignoring += readTextures(material, describe("material", i, material.name), table, materials.back()) ? 1 : 0;
+    ignoring += readTextures(ctx, material, describe("material", i, material.name), table, materials.back()) ? 1 : 0;
   }
   if (ignoring > 0) {
     warnAt(ctx, "", std::to_string(ignoring) + " of " + std::to_string(materials.size()) +

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_variants.h"
 
 namespace wp::gltf {
 
@@ -143,13 +144,13 @@ private:
   }
 
   uint32_t materialOf(const tinygltf::Primitive& primitive, const std::string& where) const {
-    if (primitive.material == -1) return defaultMaterial_;
-    if (primitive.material < 0 || static_cast<size_t>(primitive.material) >= ctx_.model.materials.size()) {
+    const int material = variantMaterial(ctx_, primitive, ctx_.variant, where);
+    if (material == -1) return defaultMaterial_;
+    if (material < 0 || static_cast<size_t>(material) >= ctx_.model.materials.size()) {
       fail(ctx_, where,
-           "material " + missingIndex(primitive.material, ctx_.model.materials.size(), "materials") +
-               "; re-export the file");
+           "material " + missingIndex(material, ctx_.model.materials.size(), "materials") + "; re-export the file");
     }
-    return static_cast<uint32_t>(primitive.material);
+    return static_cast<uint32_t>(material);
   }
 
   // Appends the `count` vertices' texture coordinates from `accessor` (zero where it is -1)

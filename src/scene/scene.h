@@ -21,8 +21,9 @@ struct Material {
   // Gltf: glTF's metallic-roughness BRDF (a Lambertian base under the dielectric's specular
   // layer); GltfDisneyDiffuse: the same with the seed report's Disney diffuse base
   // (extras.wavepath.diffuse = "disney"); Lambert: ideal diffuse of albedo baseColor
-  // (extras.wavepath.bsdf = "lambert").
-  enum class Bsdf { Gltf, GltfDisneyDiffuse, Lambert };
+  // (extras.wavepath.bsdf = "lambert"); Unlit: KHR_materials_unlit, the base colour as
+  // emission and no scattering.
+  enum class Bsdf { Gltf, GltfDisneyDiffuse, Lambert, Unlit };
   // glTF alphaMode: Opaque ignores alpha; Mask cuts the surface out where alpha <
   // alphaCutoff; Blend lets a ray pass with probability 1 - alpha (shaders/common/alpha.h).
   enum class AlphaMode { Opaque, Mask, Blend };
@@ -46,6 +47,22 @@ struct Material {
   int normalTexture = -1;             // index into Scene::textures (linear, tangent space)
   float normalScale = 1.0f;
   int emissiveTexture = -1;           // index into Scene::textures (sRGB), multiplies emission
+  // The layered extensions (shaders/common/material.h); their textures are indices into
+  // Scene::textures, -1: none, each multiplying its factor.
+  float specularWeight = 1.0f;         // KHR_materials_specular specularFactor
+  glm::vec3 specularColor{1.0f};       // specularColorFactor
+  int specularTexture = -1;            // linear, alpha
+  int specularColorTexture = -1;       // sRGB
+  glm::vec3 sheenColor{0.0f};          // KHR_materials_sheen sheenColorFactor; 0: no sheen
+  float sheenRoughness = 0.0f;         // sheenRoughnessFactor
+  int sheenColorTexture = -1;          // sRGB
+  int sheenRoughnessTexture = -1;      // linear, alpha
+  float clearcoat = 0.0f;              // KHR_materials_clearcoat clearcoatFactor; 0: no coat
+  float clearcoatRoughness = 0.0f;     // clearcoatRoughnessFactor
+  int clearcoatTexture = -1;           // linear, red
+  int clearcoatRoughnessTexture = -1;  // linear, green
+  int clearcoatNormalTexture = -1;     // linear, tangent space
+  float clearcoatNormalScale = 1.0f;
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
   bool isAlphaTested() const { return alphaMode != AlphaMode::Opaque; }

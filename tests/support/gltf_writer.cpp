@@ -99,6 +99,9 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
                  << ",\"attenuationColor\":[" << mat.attenuationColor.x << "," << mat.attenuationColor.y << ","
                  << mat.attenuationColor.z << "]}";
     }
+    if (!mat.moreExtensions.empty()) {
+      extensions << "," << mat.moreExtensions;
+    }
     if (!extensions.str().empty()) {
       materials << ",\"extensions\":{" << extensions.str().substr(1) << "}";
     }
@@ -110,7 +113,8 @@ std::filesystem::path writeGltf(const TestScene& scene, const std::filesystem::p
   std::ostringstream json;
   json.precision(9);
   json << "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_materials_emissive_strength\","
-       << "\"KHR_materials_ior\",\"KHR_materials_transmission\",\"KHR_materials_volume\"],"
+       << "\"KHR_materials_ior\",\"KHR_materials_transmission\",\"KHR_materials_volume\",\"KHR_materials_specular\","
+       << "\"KHR_materials_sheen\",\"KHR_materials_clearcoat\",\"KHR_materials_unlit\"],"
        << "\"scene\":0,\"scenes\":[{\"nodes\":[";
   for (size_t i = 0; i < rootCount; ++i) {
     json << (i ? "," : "") << i;

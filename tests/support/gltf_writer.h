@@ -21,6 +21,8 @@ struct TestMaterial {
   float transmission = 0.0f;  // KHR_materials_transmission, written when > 0
   glm::vec3 attenuationColor{1.0f};
   float attenuationDistance = 0.0f;  // KHR_materials_volume, written when > 0
+  // More of the material's extensions, written as given: "\"KHR_materials_sheen\": {...}".
+  std::string moreExtensions;
 };
 
 struct TestMesh {

@@ -353,11 +353,101 @@ std::filesystem::path writeMinificationPlane(const std::filesystem::path& dir) {
   return file.write(dir, "minification");
 }
 
+namespace {
+
+// A normal texture of ripples along u, as PNG bytes (tangent space: x = 0.5 + 0.4 sin).
+std::vector<uint8_t> ripplePng() {
+  constexpr int kSize = 32;
+  std::vector<uint8_t> rgb;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const float slope = 0.4f * std::sin(2.0f * std::numbers::pi_v<float> * 4.0f * float(x) / float(kSize));
+      const glm::vec3 n = glm::normalize(glm::vec3(slope, 0.0f, 1.0f)) * 0.5f + 0.5f;
+      rgb.insert(rgb.end(), {uint8_t(n.x * 255.0f + 0.5f), uint8_t(n.y * 255.0f + 0.5f), uint8_t(n.z * 255.0f + 0.5f)});
+    }
+  }
+  return encodePng(kSize, kSize, 3, rgb);
+}
+
+// The extension's name after "KHR_materials_".
+const char* shortName(MaterialExtension extension) {
+  switch (extension) {
+    case MaterialExtension::Specular: return "specular";
+    case MaterialExtension::Sheen: return "sheen";
+    case MaterialExtension::Clearcoat: return "clearcoat";
+    case MaterialExtension::Unlit: break;
+  }
+  return "unlit";
+}
+
+// Sphere `i` of four: its material's base (pbrMetallicRoughness) and its extension object.
+json sphereMaterial(GltfBuilder& file, MaterialExtension extension, int i) {
+  const double step = double(i) / 3.0;
+  json base = {{"baseColorFactor", {0.1, 0.15, 0.6, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.3}};
+  json object;
+  switch (extension) {
+    case MaterialExtension::Specular:
+      object = {{"specularFactor", step}, {"specularColorFactor", {1.0, 0.6, 0.2}}};
+      break;
+    case MaterialExtension::Sheen:
+      base = {{"baseColorFactor", {0.05, 0.05, 0.2, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.8}};
+      object = {{"sheenColorFactor", {1.0, 0.6, 0.8}}, {"sheenRoughnessFactor", 0.2 + 0.2 * i}};
+      break;
+    case MaterialExtension::Clearcoat:
+      base = {{"baseColorFactor", {0.7, 0.05, 0.05, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.7}};
+      object = {{"clearcoatFactor", 1.0}, {"clearcoatRoughnessFactor", 0.2 * i}};
+      if (i == 3) {
+        file.json["images"] = {{{"bufferView", file.addView(ripplePng())}, {"mimeType", "image/png"}}};
+        file.json["textures"] = {{{"source", 0}}};
+        object["clearcoatRoughnessFactor"] = 0.05;
+        object["clearcoatNormalTexture"] = {{"index", 0}, {"scale", 1.0}};
+      }
+      break;
+    case MaterialExtension::Unlit:
+      base = {{"baseColorFactor", {0.9 - 0.25 * i, 0.3 + 0.2 * i, 0.2, 1.0}}};
+      object = json::object();
+      break;
+  }
+  return {{"pbrMetallicRoughness", base},
+          {"extensions", {{std::string("KHR_materials_") + shortName(extension), object}}}};
+}
+
+}  // namespace
+
+std::filesystem::path writeMaterialSpheres(const std::filesystem::path& dir, MaterialExtension extension,
+                                           bool withExtension) {
+  GltfBuilder file;
+  const SphereMesh sphere = uvSphere(48, 24);
+  std::vector<uint16_t> indices(sphere.indices.begin(), sphere.indices.end());
+  const json attributes = {{"POSITION", file.addFloats(flatten(sphere.positions), "VEC3", 3)},
+                           {"NORMAL", file.addFloats(flatten(sphere.normals), "VEC3", 3)},
+                           {"TEXCOORD_0", file.addFloats(flatten(sphere.uvs), "VEC2", 2)}};
+  const int index = file.addAccessor(file.addView(bytesOf(indices)), kUnsignedShort, indices.size(), "SCALAR");
+  const std::string name = shortName(extension);
+  std::vector<int> nodes;
+  for (int i = 0; i < 4; ++i) {
+    json material = sphereMaterial(file, extension, i);
+    if (!withExtension) material.erase("extensions");
+    material["name"] = name + " " + std::to_string(i);
+    file.json["materials"].push_back(material);
+    file.json["meshes"].push_back({{"primitives", {{{"attributes", attributes}, {"indices", index}, {"material", i}}}}});
+    file.json["nodes"].push_back({{"mesh", i}, {"translation", {2.3 * (i - 1.5), 0.0, 0.0}}});
+    nodes.push_back(i);
+  }
+  if (withExtension) file.useExtension("KHR_materials_" + name, false);
+  addStage(file, {0.0f, 1.5f, 7.5f}, {0.0f, 0.0f, 0.0f}, {-0.6f, -0.8f, -0.5f}, 1500.0f, nodes);
+  return file.write(dir, name + "-spheres" + (withExtension ? "" : "-without"));
+}
+
 void writeAllSamples(const std::filesystem::path& dir) {
   writeMinificationPlane(dir);
   writeAlphaCoverage(dir);
   writeAlphaShadow(dir);
   writeTextureTransform(dir);
+  for (MaterialExtension e : {MaterialExtension::Specular, MaterialExtension::Sheen, MaterialExtension::Clearcoat,
+                              MaterialExtension::Unlit}) {
+    writeMaterialSpheres(dir, e, true);
+  }
   for (Compression c : {Compression::None, Compression::Draco, Compression::Meshopt}) writeCompressedSphere(dir, c);
   writeSparseGrid(dir, true);
   writeSparseGrid(dir, false);

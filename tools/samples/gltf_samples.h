@@ -61,6 +61,18 @@ inline glm::u8vec3 transformTestTexel(int x, int y) {
   return glm::u8vec3(30 + 60 * x, 30 + 60 * y, 200 - 40 * x);
 }
 
+enum class MaterialExtension { Specular, Sheen, Clearcoat, Unlit };
+
+// A row of four spheres of one material extension, its parameter stepping along the row
+// (KHR_materials_specular: specularFactor 0 to 1 with an orange specularColorFactor over
+// blue plastic; _sheen: sheenRoughnessFactor 0.2 to 0.8 of a pink sheen over dark blue cloth;
+// _clearcoat: clearcoatRoughnessFactor 0, 0.2, 0.4 over rough red plastic, then 0.05 with a
+// rippled clearcoatNormalTexture; _unlit: four base colours), lit by a directional lamp. With
+// `withExtension` false the same file without the extension, for comparison. Writes
+// <dir>/<extension>-spheres.gltf (or <extension>-spheres-without.gltf) and its .bin.
+std::filesystem::path writeMaterialSpheres(const std::filesystem::path& dir, MaterialExtension extension,
+                                           bool withExtension);
+
 // Writes every sample into `dir`.
 void writeAllSamples(const std::filesystem::path& dir);
 

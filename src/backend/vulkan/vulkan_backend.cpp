@@ -8,7 +8,7 @@
 #include "backend/vulkan/vk_check.h"
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
-#include "shaders/common/ggx_albedo_table.h"
+#include "shaders/common/bsdf_tables.h"
 #include "spirv/accumulate_spv.h"
 #include "spirv/advance_spv.h"
 #include "spirv/connect_motion_spv.h"
@@ -108,8 +108,8 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
     VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
   }
   countersReadback_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-  bsdfTables_ = VulkanBuffer(*context_, sizeof(gpu::kGgxAlbedo), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
-  bsdfTables_.upload(gpu::kGgxAlbedo, sizeof(gpu::kGgxAlbedo));
+  bsdfTables_ = VulkanBuffer(*context_, sizeof(gpu::kBsdfTables), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
+  bsdfTables_.upload(gpu::kBsdfTables, sizeof(gpu::kBsdfTables));
 }
 
 VulkanBackend::~VulkanBackend() {
