@@ -8,7 +8,7 @@
 #include "bsdf.h"
 #include "environment.h"
 #include "lights.h"
-#include "rng.h"
+#include "sampler.h"
 #include "sampling.h"
 #include "surface.h"
 #include "texture.h"
@@ -134,7 +134,8 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   vec3 direction = rayDirection(ray);
   vec3 throughput = rayThroughput(ray);
   float bsdfPdfOfRay = rayBsdfPdf(ray);  // 0 for camera rays and delta samples: nothing to weigh against
-  uint rng = rayRngState(ray);
+  PathSamples samples = rayPathSamples(ray);
+  uint samplerKind = params.samplerKind;
   uint bounce = rayBounce(ray);
   uint maxBounces = params.maxBounces;
   uint mode = params.mode;
@@ -192,8 +193,8 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   float skyChoice = params.sky.selectionProbability;
   uint punctualLights = params.punctualLightCount;
   if ((mode != WP_MODE_BSDF || punctualLights > 0u) && (lightCount > 0u || skyChoice > 0.0f)) {
-    RngDraw3 lightDraw = rngFloat3(rng);
-    rng = lightDraw.state;
+    PathDraw3 lightDraw = drawPath3(samplerKind, samples, vertexDimension(bounce) + WP_DIM_LIGHT_CHOICE);
+    samples = lightDraw.samples;
     vec3 u = lightDraw.u;
     // The sky or the triangles, chosen in proportion to their power (packScene); u.x is
     // reused, rescaled, to select the triangle.
@@ -233,8 +234,8 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   // From the last vertex a ray is still traced, only to collect emission the light sample
   // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
   // with NEE alone, what only a delta lobe reaches.
-  RngDraw3 bsdfDraw = rngFloat3(rng);
-  rng = bsdfDraw.state;
+  PathDraw3 bsdfDraw = drawPath3(samplerKind, samples, vertexDimension(bounce) + WP_DIM_BSDF_LOBE);
+  samples = bsdfDraw.samples;
   MaterialSample bs = sampleBsdf(m, woLocal, bsdfDraw.u, bsdfFlags);
   bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
   if (bounce < maxBounces || mode != WP_MODE_NEE || isDelta) {
@@ -243,8 +244,9 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
     if (bounce >= params.rouletteStart) {
       // Russian roulette: keep the path with probability max(throughput), clamped to 1.
       survival = min(1.0f, maxComponent(nextThroughput));
-      rng = rngNext(rng);
-      if (rngFloat(rng) >= survival) {
+      PathDraw1 roulette = drawPath1(samplerKind, samples, vertexDimension(bounce) + WP_DIM_ROULETTE);
+      samples = roulette.samples;
+      if (roulette.u >= survival) {
         survival = 0.0f;
       }
     }
@@ -254,7 +256,7 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
       vec3 origin = offsetRayOrigin(s.position, s.normal, wi);
       nextThroughput = nextThroughput / survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;
-      r.next = makePathRay(origin, rayPathSlot(ray), wi, rayPdf, nextThroughput, time, rng, bounce + 1u);
+      r.next = makePathRay(origin, rayPathSlot(ray), wi, rayPdf, nextThroughput, time, samples, bounce + 1u);
       r.flags |= WP_SHADE_EXTEND;
     }
   }

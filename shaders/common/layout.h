@@ -11,6 +11,7 @@
 #define WP_LAYOUT_H
 
 #include "portable.h"
+#include "sampler.h"
 #include "thin_lens.h"
 
 WP_BEGIN
@@ -278,13 +279,18 @@ WP_STRUCT(RenderParams)
   uint regionY;
   uint regionWidth;
   uint regionHeight;
+  uint samplerKind;  // WP_SAMPLER_* (sampler.h)
+  uint unused0;
+  uint unused1;
+  uint unused2;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
 //   origin: xyz; w: asFloat(path slot in this pass)
 //   direction: xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
 //   throughput: rgb; w: the path's shutter time in [0, 1) (motion blur)
-//   state: x: RNG state, y: bounce of the vertex this ray will hit, z, w: unused
+//   state: x: the sampler's state (PathSamples), y: bounce of the vertex this ray will hit,
+//     z: the path's sample index in its pixel, w: unused
 #define WP_FIELDS_PathRay(F) \
   F(vec4, origin)            \
   F(vec4, direction)         \
@@ -299,15 +305,20 @@ WP_FN vec3 rayDirection(PathRay r) { return make_vec3(r.direction.x, r.direction
 WP_FN float rayBsdfPdf(PathRay r) { return r.direction.w; }
 WP_FN vec3 rayThroughput(PathRay r) { return make_vec3(r.throughput.x, r.throughput.y, r.throughput.z); }
 WP_FN float rayTime(PathRay r) { return r.throughput.w; }
-WP_FN uint rayRngState(PathRay r) { return r.state.x; }
+WP_FN PathSamples rayPathSamples(PathRay r) {
+  PathSamples p;
+  p.state = r.state.x;
+  p.sampleIndex = r.state.z;
+  return p;
+}
 WP_FN uint rayBounce(PathRay r) { return r.state.y; }
 WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
-                          uint rngState, uint bounce) {
+                          PathSamples samples, uint bounce) {
   PathRay r;
   r.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
   r.direction = make_vec4(direction.x, direction.y, direction.z, bsdfPdf);
   r.throughput = make_vec4(throughput.x, throughput.y, throughput.z, time);
-  r.state = make_uvec4(rngState, bounce, 0u, 0u);
+  r.state = make_uvec4(samples.state, bounce, samples.sampleIndex, 0u);
   return r;
 }
 

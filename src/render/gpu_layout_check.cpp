@@ -18,7 +18,7 @@ static_assert(sizeof(GpuMaterial) == 112);
 static_assert(sizeof(GpuLight) == 96);
 static_assert(sizeof(ThinLens) == 80);
 static_assert(sizeof(GpuEnvironment) == 32);
-static_assert(sizeof(RenderParams) == 192);
+static_assert(sizeof(RenderParams) == 208);
 static_assert(sizeof(PathRay) == 64);
 static_assert(sizeof(HitRecord) == 16);
 static_assert(sizeof(ShadowRay) == 48);
@@ -32,6 +32,7 @@ static_assert(offsetof(RenderParams, maxBounces) == 128);
 static_assert(offsetof(RenderParams, planeCount) == 144);
 static_assert(offsetof(RenderParams, bsdfFlags) == 160);
 static_assert(offsetof(RenderParams, regionX) == 176);
+static_assert(offsetof(RenderParams, samplerKind) == 192);
 static_assert(offsetof(GpuEnvironment, width) == 16);
 
 // The binding table: each row's stride is its element's size in 16-byte texels (what the
