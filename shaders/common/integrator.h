@@ -115,6 +115,188 @@ WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) 
   return (woGeometric * wiGeometric > 0.0f) == (localProduct > 0.0f);
 }
 
+// A path at the surface vertex it reached, as the shading functions below read it.
+WP_STRUCT(PathVertex)
+  vec3 position;    // on the surface
+  vec3 normal;      // geometric, unit
+  Frame frame;      // the shading frame the BSDF sees (pathVertexAt)
+  vec3 woLocal;     // back along the ray, in `frame`
+  float woSide;     // dot(normal, wo): reflection and transmission are told apart by it
+  vec3 throughput;  // of the path up to here, the medium it crossed included
+  float time;       // the path's shutter time
+  uint pathSlot;
+  uint bounce;
+WP_STRUCT_END(PathVertex)
+
+// What a vertex may send on: the path's continuation, and its light sample's shadow ray
+// (`exists` is false where there is none).
+WP_STRUCT(NextRay)
+  bool exists;
+  PathRay ray;
+WP_STRUCT_END(NextRay)
+WP_STRUCT(ShadowConnection)
+  bool exists;
+  ShadowRay ray;
+WP_STRUCT_END(ShadowConnection)
+
+// Smooth shading: the BSDF sees the interpolated normal, but whether a direction is
+// reflected or transmitted is decided by the geometric normal, so no light leaks through
+// the surface (a direction whose two verdicts differ contributes nothing, to every
+// strategy alike: sidesAgree). Where wo itself is on different sides of the two, the vertex
+// normals are unusable there and the point shades flat.
+WP_FN PathVertex pathVertexAt(SurfaceHit s, vec3 wo, vec3 throughput, PathRay ray) {
+  PathVertex v;
+  v.position = s.position;
+  v.normal = s.normal;
+  v.woSide = dot(s.normal, wo);
+  vec3 shadingNormal = v.woSide * dot(s.shadingNormal, wo) > 0.0f ? s.shadingNormal : s.normal;
+  v.frame = makeFrame(shadingNormal);
+  v.woLocal = frameToLocal(v.frame, wo);
+  v.throughput = throughput;
+  v.time = rayTime(ray);
+  v.pathSlot = rayPathSlot(ray);
+  v.bounce = rayBounce(ray);
+  return v;
+}
+
+// The MIS weight of emission that `ray` found at distance t on the emitter of s: next event
+// estimation could have found that light too (a delta BSDF sample, whose ray has pdf 0,
+// could not, nor could a camera ray).
+WP_FN float emissionMisWeight(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit s, vec3 wo, float t) {
+  float weight = 1.0f;
+  float bsdfPdfOfRay = rayBsdfPdf(ray);
+  if (bsdfPdfOfRay > 0.0f && s.light != WP_INVALID) {
+    uint mode = params.mode;
+    if (mode == WP_MODE_NEE) {
+      weight = 0.0f;
+    } else if (mode == WP_MODE_MIS) {
+      // The selection probability as seen from the previous vertex (the ray's origin),
+      // times the chance that next event estimation chose the triangles over the sky.
+      GpuLight light = WP_LOAD(lights, s.light);
+      float selection = (1.0f - params.sky.selectionProbability) *
+                        lightSelectionProbability(WP_BUFFERS_ARG params.lightCount, params.lightSelection, light,
+                                                  rayOrigin(ray), rayTime(ray));
+      weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
+    }
+  }
+  return weight;
+}
+
+// The light the path finds at the hit (material m at s, reached by `ray` at distance t,
+// seen from wo), weighted against next event estimation.
+WP_FN vec3 emissionAtHit(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit s, GpuMaterial m, vec3 wo,
+                         vec3 throughput, float t) {
+  vec3 emission = emittedRadiance(xyz(m.emission), m.emission.w != 0.0f, s.normal, wo);
+  if (!(maxComponent(emission) > 0.0f)) {
+    return make_vec3(0.0f, 0.0f, 0.0f);
+  }
+  vec3 radiance = throughput * emission * emissionMisWeight(WP_BUFFERS_ARG params, ray, s, wo, t);
+  return rayBounce(ray) > 0u ? clampedContribution(params, radiance) : radiance;
+}
+
+// Whether shade draws a light sample: in every mode but BSDF-only, where it still reaches
+// the punctual lights, which no BSDF sample can hit, and leaves the rest to BSDF sampling.
+WP_FN bool samplesLights(RenderParams params) {
+  return (params.mode != WP_MODE_BSDF || params.punctualLightCount > 0u) &&
+         (params.lightCount > 0u || params.sky.selectionProbability > 0.0f);
+}
+
+// A point on the sky or on the lights for next event estimation from `position`: the sky
+// or the lights chosen in proportion to their power (packScene), u.x reused, rescaled, to
+// select the light; its pdf includes that choice.
+WP_FN LightSample sampleSkyOrLight(WP_BUFFERS RenderParams params, vec3 position, float time, vec3 u) {
+  float skyChoice = params.sky.selectionProbability;
+  LightSample ls;
+  if (u.x < skyChoice) {
+    ls = sampleEnvironment(WP_BUFFERS_ARG params.sky, make_vec2(u.y, u.z));
+    ls.pdf *= skyChoice;
+  } else {
+    float select = min((u.x - skyChoice) / (1.0f - skyChoice), 0.99999994f);
+    ls = sampleLight(WP_BUFFERS_ARG params.lightCount, params.lightSelection, position, time,
+                     make_vec3(select, u.y, u.z));
+    ls.pdf *= 1.0f - skyChoice;
+  }
+  return ls;
+}
+
+// Next event estimation at v with random numbers u: a light sample, its BSDF value and
+// MIS weight, and the shadow ray that adds it to the path if nothing blocks it (none where
+// it contributes nothing). In BSDF-only mode only the punctual lights are sampled.
+WP_FN ShadowConnection sampleDirectLight(WP_BUFFERS RenderParams params, PathVertex v, GpuMaterial m, vec3 u) {
+  uint mode = params.mode;
+  LightSample ls = sampleSkyOrLight(WP_BUFFERS_ARG params, v.position, v.time, u);
+  if (mode == WP_MODE_BSDF && !ls.isDelta) {
+    ls.pdf = 0.0f;
+  }
+  BsdfEval e = noEval();
+  if (ls.pdf > 0.0f) {
+    vec3 wiLocal = frameToLocal(v.frame, ls.direction);
+    if (sidesAgree(v.woSide, dot(v.normal, ls.direction), v.woLocal.z * wiLocal.z)) {
+      e = evalBsdf(m, v.woLocal, wiLocal, params.bsdfFlags);
+    }
+  }
+  ShadowConnection c;
+  vec3 unshadowed = e.fCos * ls.radiance;
+  c.exists = maxComponent(unshadowed) > 0.0f;
+  if (c.exists) {
+    float weight = mode == WP_MODE_MIS && !ls.isDelta ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
+    vec3 contribution = clampedContribution(params, v.throughput * unshadowed * (weight / ls.pdf));
+    c.ray = makeShadowRay(offsetRayOrigin(v.position, v.normal, ls.direction), v.pathSlot, ls.direction,
+                          ls.distance * WP_SHADOW_RAY_SHORTEN, contribution, v.time);
+  }
+  return c;
+}
+
+// Russian roulette on a path whose throughput becomes `throughput` past v: from
+// params.rouletteStart on, it survives with probability max(throughput), clamped to 1,
+// decided by the vertex's roulette number of `samples`. The samples after it, and the
+// survival probability (0: the path ends).
+WP_STRUCT(RouletteResult)
+  PathSamples samples;
+  float survival;
+WP_STRUCT_END(RouletteResult)
+WP_FN RouletteResult russianRoulette(RenderParams params, uint bounce, vec3 throughput, PathSamples samples) {
+  RouletteResult r;
+  r.samples = samples;
+  r.survival = 1.0f;
+  if (bounce >= params.rouletteStart) {
+    r.survival = min(1.0f, maxComponent(throughput));
+    PathDraw1 draw = drawPath1(params.samplerKind, samples, vertexDimension(bounce) + WP_DIM_ROULETTE);
+    r.samples = draw.samples;
+    if (draw.u >= r.survival) {
+      r.survival = 0.0f;
+    }
+  }
+  return r;
+}
+
+// BSDF sampling at v with the draw `draw` (its numbers and the path's samples after them):
+// the continuation of the path, which survived Russian roulette, unless it ends here.
+//
+// From the last vertex a ray is still traced, only to collect emission the light sample
+// did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
+// with NEE alone, what only a delta lobe reaches.
+WP_FN NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, PathDraw3 draw) {
+  NextRay next;
+  next.exists = false;
+  MaterialSample bs = sampleBsdf(m, v.woLocal, draw.u, params.bsdfFlags);
+  bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
+  if (v.bounce < params.maxBounces || params.mode != WP_MODE_NEE || isDelta) {
+    vec3 nextThroughput = v.throughput * bs.weight;
+    RouletteResult roulette = russianRoulette(params, v.bounce, nextThroughput, draw.samples);
+    vec3 wi = frameToWorld(v.frame, bs.wi);
+    bool agrees = sidesAgree(v.woSide, dot(v.normal, wi), v.woLocal.z * bs.wi.z);
+    if (bs.pdf > 0.0f && agrees && roulette.survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
+      vec3 origin = offsetRayOrigin(v.position, v.normal, wi);
+      nextThroughput = nextThroughput / roulette.survival;
+      float rayPdf = isDelta ? 0.0f : bs.pdf;
+      next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, roulette.samples, v.bounce + 1u);
+      next.exists = true;
+    }
+  }
+  return next;
+}
+
 // Bounce numbering follows Cycles' "max bounces": the camera ray hits the vertex of bounce
 // 0, and with params.maxBounces = D the path gathers light at vertices 0..D (next event
 // estimation there, or emission found by the ray leaving them), so D = 0 is direct light.
@@ -126,139 +308,47 @@ WP_FN bool sidesAgree(float woGeometric, float wiGeometric, float localProduct) 
 // Media: a ray that reaches the back side of a surface travelled inside it, so the
 // material's KHR_materials_volume attenuation applies over t (Beer's law). This assumes
 // closed meshes and media that do not nest or overlap.
+//
+// A vertex goes through: the surface and its material, emissionAtHit (with its MIS
+// weight), then, below the bounce limit, sampleDirectLight (next event estimation) and
+// sampleContinuation (BSDF sampling and Russian roulette), each with its own numbers from
+// the path's sampler (the vertex's dimensions of sampler.h), drawn in that order.
 WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
                            uint primitive) {
   ShadeResult r;
   r.flags = 0u;
-  r.radiance = make_vec3(0.0f, 0.0f, 0.0f);
   vec3 direction = rayDirection(ray);
   vec3 throughput = rayThroughput(ray);
-  float bsdfPdfOfRay = rayBsdfPdf(ray);  // 0 for camera rays and delta samples: nothing to weigh against
-  PathSamples samples = rayPathSamples(ray);
-  uint samplerKind = params.samplerKind;
-  uint bounce = rayBounce(ray);
-  uint maxBounces = params.maxBounces;
-  uint mode = params.mode;
-  uint lightCount = params.lightCount;
-  uint bsdfFlags = params.bsdfFlags;
-  uint lightSelection = params.lightSelection;
-
-  float time = rayTime(ray);
-  SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, time);
+  SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, rayTime(ray));
   GpuMaterial m = texturedMaterial(WP_BUFFERS_ARG WP_LOAD(materials, s.material), s);
   s.shadingNormal = normalMapped(WP_BUFFERS_ARG m, s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
   }
-
-  vec3 emission = emittedRadiance(xyz(m.emission), m.emission.w != 0.0f, s.normal, wo);
-  if (maxComponent(emission) > 0.0f) {
-    float weight = 1.0f;
-    if (bsdfPdfOfRay > 0.0f && s.light != WP_INVALID) {
-      // Next event estimation could have found this light too: weigh the two strategies.
-      if (mode == WP_MODE_NEE) {
-        weight = 0.0f;
-      } else if (mode == WP_MODE_MIS) {
-        // The selection probability as seen from the previous vertex (the ray's origin),
-        // times the chance that next event estimation chose the triangles over the sky.
-        GpuLight light = WP_LOAD(lights, s.light);
-        float selection = (1.0f - params.sky.selectionProbability) *
-                          lightSelectionProbability(WP_BUFFERS_ARG lightCount, lightSelection, light,
-                                                    rayOrigin(ray), time);
-        weight = balanceHeuristic(bsdfPdfOfRay, lightPdf(light, selection, t * t, dot(s.normal, wo)));
-      }
-    }
-    r.radiance = throughput * emission * weight;
-    if (bounce > 0u) {
-      r.radiance = clampedContribution(params, r.radiance);
-    }
-  }
-  if (bounce > maxBounces) {
+  r.radiance = emissionAtHit(WP_BUFFERS_ARG params, ray, s, m, wo, throughput, t);
+  if (rayBounce(ray) > params.maxBounces) {
     return r;
   }
 
-  // Smooth shading: the BSDF sees the interpolated normal, but whether a direction is
-  // reflected or transmitted is decided by the geometric normal, so no light leaks through
-  // the surface (a direction whose two verdicts differ contributes nothing, to every
-  // strategy alike). Where wo itself is on different sides of the two, the vertex normals
-  // are unusable there and the point shades flat.
-  float woSide = dot(s.normal, wo);
-  vec3 shadingNormal = woSide * dot(s.shadingNormal, wo) > 0.0f ? s.shadingNormal : s.normal;
-  Frame frame = makeFrame(shadingNormal);
-  vec3 woLocal = frameToLocal(frame, wo);
-
-  // Light sampling, in every mode but BSDF-only; there it still reaches the punctual lights,
-  // which no BSDF sample can hit, and leaves the rest to BSDF sampling.
-  float skyChoice = params.sky.selectionProbability;
-  uint punctualLights = params.punctualLightCount;
-  if ((mode != WP_MODE_BSDF || punctualLights > 0u) && (lightCount > 0u || skyChoice > 0.0f)) {
-    PathDraw3 lightDraw = drawPath3(samplerKind, samples, vertexDimension(bounce) + WP_DIM_LIGHT_CHOICE);
+  PathVertex v = pathVertexAt(s, wo, throughput, ray);
+  PathSamples samples = rayPathSamples(ray);
+  uint samplerKind = params.samplerKind;
+  uint firstDimension = vertexDimension(v.bounce);
+  if (samplesLights(params)) {
+    PathDraw3 lightDraw = drawPath3(samplerKind, samples, firstDimension + WP_DIM_LIGHT_CHOICE);
     samples = lightDraw.samples;
-    vec3 u = lightDraw.u;
-    // The sky or the triangles, chosen in proportion to their power (packScene); u.x is
-    // reused, rescaled, to select the triangle.
-    LightSample ls;
-    if (u.x < skyChoice) {
-      ls = sampleEnvironment(WP_BUFFERS_ARG params.sky, make_vec2(u.y, u.z));
-      ls.pdf *= skyChoice;
-    } else {
-      float select = min((u.x - skyChoice) / (1.0f - skyChoice), 0.99999994f);
-      ls = sampleLight(WP_BUFFERS_ARG lightCount, lightSelection, s.position, time,
-                       make_vec3(select, u.y, u.z));
-      ls.pdf *= 1.0f - skyChoice;
-    }
-    if (mode == WP_MODE_BSDF && !ls.isDelta) {
-      ls.pdf = 0.0f;
-    }
-    BsdfEval e = noEval();
-    if (ls.pdf > 0.0f) {
-      vec3 wiLocal = frameToLocal(frame, ls.direction);
-      if (sidesAgree(woSide, dot(s.normal, ls.direction), woLocal.z * wiLocal.z)) {
-        e = evalBsdf(m, woLocal, wiLocal, bsdfFlags);
-      }
-    }
-    vec3 unshadowed = e.fCos * ls.radiance;
-    if (maxComponent(unshadowed) > 0.0f) {
-      float weight = mode == WP_MODE_MIS && !ls.isDelta ? balanceHeuristic(ls.pdf, e.pdf) : 1.0f;
-      vec3 origin = offsetRayOrigin(s.position, s.normal, ls.direction);
-      r.shadow.origin = make_vec4(origin.x, origin.y, origin.z, ray.origin.w);
-      r.shadow.direction = make_vec4(ls.direction.x, ls.direction.y, ls.direction.z,
-                                     ls.distance * WP_SHADOW_RAY_SHORTEN);
-      vec3 c = clampedContribution(params, throughput * unshadowed * (weight / ls.pdf));
-      r.shadow.contribution = make_vec4(c.x, c.y, c.z, time);
+    ShadowConnection shadow = sampleDirectLight(WP_BUFFERS_ARG params, v, m, lightDraw.u);
+    if (shadow.exists) {
+      r.shadow = shadow.ray;
       r.flags |= WP_SHADE_SHADOW;
     }
   }
-
-  // From the last vertex a ray is still traced, only to collect emission the light sample
-  // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
-  // with NEE alone, what only a delta lobe reaches.
-  PathDraw3 bsdfDraw = drawPath3(samplerKind, samples, vertexDimension(bounce) + WP_DIM_BSDF_LOBE);
-  samples = bsdfDraw.samples;
-  MaterialSample bs = sampleBsdf(m, woLocal, bsdfDraw.u, bsdfFlags);
-  bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
-  if (bounce < maxBounces || mode != WP_MODE_NEE || isDelta) {
-    vec3 nextThroughput = throughput * bs.weight;
-    float survival = 1.0f;
-    if (bounce >= params.rouletteStart) {
-      // Russian roulette: keep the path with probability max(throughput), clamped to 1.
-      survival = min(1.0f, maxComponent(nextThroughput));
-      PathDraw1 roulette = drawPath1(samplerKind, samples, vertexDimension(bounce) + WP_DIM_ROULETTE);
-      samples = roulette.samples;
-      if (roulette.u >= survival) {
-        survival = 0.0f;
-      }
-    }
-    vec3 wi = frameToWorld(frame, bs.wi);
-    bool agrees = sidesAgree(woSide, dot(s.normal, wi), woLocal.z * bs.wi.z);
-    if (bs.pdf > 0.0f && agrees && survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
-      vec3 origin = offsetRayOrigin(s.position, s.normal, wi);
-      nextThroughput = nextThroughput / survival;
-      float rayPdf = isDelta ? 0.0f : bs.pdf;
-      r.next = makePathRay(origin, rayPathSlot(ray), wi, rayPdf, nextThroughput, time, samples, bounce + 1u);
-      r.flags |= WP_SHADE_EXTEND;
-    }
+  NextRay next =
+      sampleContinuation(params, v, m, drawPath3(samplerKind, samples, firstDimension + WP_DIM_BSDF_LOBE));
+  if (next.exists) {
+    r.next = next.ray;
+    r.flags |= WP_SHADE_EXTEND;
   }
   return r;
 }

@@ -55,6 +55,18 @@ WP_FN vec3 nodeRightMin(BvhNode n) { return make_vec3(n.rightMin.x, n.rightMin.y
 WP_FN vec3 nodeRightMax(BvhNode n) { return make_vec3(n.rightMax.x, n.rightMax.y, n.rightMax.z); }
 WP_FN uint nodeRightIndex(BvhNode n) { return asUint(n.rightMin.w); }
 WP_FN uint nodeRightCount(BvhNode n) { return asUint(n.rightMax.w); }
+// The node with its left (right) child set: the child's bounds, and a node index with
+// count 0, or a leaf's first primitive and count (an empty child: min > max, WP_INVALID, 0).
+WP_FN BvhNode withLeftChild(BvhNode n, vec3 boundsMin, vec3 boundsMax, uint index, uint count) {
+  n.leftMin = make_vec4(boundsMin.x, boundsMin.y, boundsMin.z, asFloat(index));
+  n.leftMax = make_vec4(boundsMax.x, boundsMax.y, boundsMax.z, asFloat(count));
+  return n;
+}
+WP_FN BvhNode withRightChild(BvhNode n, vec3 boundsMin, vec3 boundsMax, uint index, uint count) {
+  n.rightMin = make_vec4(boundsMin.x, boundsMin.y, boundsMin.z, asFloat(index));
+  n.rightMax = make_vec4(boundsMax.x, boundsMax.y, boundsMax.z, asFloat(count));
+  return n;
+}
 
 // Triangle in object space, stored in BVH leaf order: 64 bytes.
 //   v0: xyz: vertex 0
@@ -74,6 +86,16 @@ WP_FN uint triangleMaterial(GpuTriangle t) { return t.info.x; }
 // Its ordinal among its mesh's emitters (its light is the instance's first light plus it),
 // or WP_INVALID.
 WP_FN uint triangleEmitter(GpuTriangle t) { return t.info.y; }
+WP_FN GpuTriangle makeGpuTriangle(vec3 v0, vec3 v1, vec3 v2, uint material, uint emitter) {
+  vec3 edge1 = v1 - v0;
+  vec3 edge2 = v2 - v0;
+  GpuTriangle t;
+  t.v0 = make_vec4(v0.x, v0.y, v0.z, 0.0f);
+  t.edge1 = make_vec4(edge1.x, edge1.y, edge1.z, 0.0f);
+  t.edge2 = make_vec4(edge2.x, edge2.y, edge2.z, 0.0f);
+  t.info = make_uvec4(material, emitter, 0u, 0u);
+  return t;
+}
 
 // Shading data of the GpuTriangle at the same index, read only when shading a hit (and by
 // light samples, for the emissive texture), so the traversal's triangle records stay 64
@@ -130,6 +152,13 @@ WP_FN uint textureWrapS(GpuTexture t) { return t.info.w & 3u; }
 WP_FN uint textureWrapT(GpuTexture t) { return (t.info.w >> 2u) & 3u; }
 WP_FN bool textureIsSrgb(GpuTexture t) { return (t.info.w & WP_TEXTURE_SRGB) != 0u; }
 WP_FN bool textureIsNearest(GpuTexture t) { return (t.info.w & WP_TEXTURE_NEAREST) != 0u; }
+WP_FN GpuTexture makeGpuTexture(uint firstTexel, uint width, uint height, uint wrapS, uint wrapT, bool srgb,
+                                bool nearest) {
+  GpuTexture t;
+  uint flags = wrapS | (wrapT << 2u) | (srgb ? WP_TEXTURE_SRGB : 0u) | (nearest ? WP_TEXTURE_NEAREST : 0u);
+  t.info = make_uvec4(firstTexel, width, height, flags);
+  return t;
+}
 
 // One placed object: a mesh (bottom-level BVH) or an analytic sphere, 64 bytes.
 //   worldToObject0..2: rows of the 3x4 world-to-object matrix (at shutter open if it moves)
@@ -148,6 +177,26 @@ WP_FN uint instanceBvhRoot(GpuInstance inst) { return inst.info.y; }
 WP_FN uint instanceSphereMaterial(GpuInstance inst) { return inst.info.y; }
 WP_FN uint instanceFirstLight(GpuInstance inst) { return inst.info.z; }
 WP_FN uint instanceMotionKeys(GpuInstance inst) { return inst.info.w; }
+// An instance of kind `kind` (WP_INSTANCE_*) whose rows of the world-to-object matrix are
+// row0..2, with its BVH root (mesh) or material (sphere), that is light-sampled from no
+// light and stands still until withInstanceFirstLight and withInstanceMotionKeys say
+// otherwise.
+WP_FN GpuInstance makeGpuInstance(vec4 row0, vec4 row1, vec4 row2, uint kind, uint bvhRootOrMaterial) {
+  GpuInstance inst;
+  inst.worldToObject0 = row0;
+  inst.worldToObject1 = row1;
+  inst.worldToObject2 = row2;
+  inst.info = make_uvec4(kind, bvhRootOrMaterial, WP_INVALID, WP_INVALID);
+  return inst;
+}
+WP_FN GpuInstance withInstanceFirstLight(GpuInstance inst, uint firstLight) {
+  inst.info.z = firstLight;
+  return inst;
+}
+WP_FN GpuInstance withInstanceMotionKeys(GpuInstance inst, uint motionKeys) {
+  inst.info.w = motionKeys;
+  return inst;
+}
 
 // A moving instance's placement at shutter open and at shutter close is kept as two motion
 // keys, stored after the placed instances in the instance buffer in GpuInstance records (so
@@ -163,6 +212,24 @@ WP_FN vec4 motionKeyScale(GpuInstance key) { return key.worldToObject2; }  // xy
 WP_FN vec4 motionKeyRow0(GpuInstance key) { return key.worldToObject0; }
 WP_FN vec4 motionKeyRow1(GpuInstance key) { return key.worldToObject1; }
 WP_FN vec4 motionKeyRow2(GpuInstance key) { return key.worldToObject2; }
+// rotation: the quaternion (x, y, z, w).
+WP_FN GpuInstance makeTrsMotionKey(vec3 translation, vec4 rotation, vec3 scale) {
+  GpuInstance key;
+  key.worldToObject0 = make_vec4(translation.x, translation.y, translation.z, 0.0f);
+  key.worldToObject1 = rotation;
+  key.worldToObject2 = make_vec4(scale.x, scale.y, scale.z, 0.0f);
+  key.info = make_uvec4(WP_MOTION_KEY_TRS, 0u, 0u, 0u);
+  return key;
+}
+// row0..2: the rows of the 3x4 object-to-world matrix.
+WP_FN GpuInstance makeMatrixMotionKey(vec4 row0, vec4 row1, vec4 row2) {
+  GpuInstance key;
+  key.worldToObject0 = row0;
+  key.worldToObject1 = row1;
+  key.worldToObject2 = row2;
+  key.info = make_uvec4(WP_MOTION_KEY_MATRIX, 0u, 0u, 0u);
+  return key;
+}
 
 // Infinite plane dot(n, p) = d, 32 bytes.
 //   normalDistance: xyz: unit normal, w: d
@@ -174,6 +241,12 @@ WP_RECORD(GpuPlane)
 WP_FN vec3 planeNormal(GpuPlane p) { return make_vec3(p.normalDistance.x, p.normalDistance.y, p.normalDistance.z); }
 WP_FN float planeDistance(GpuPlane p) { return p.normalDistance.w; }
 WP_FN uint planeMaterial(GpuPlane p) { return p.info.x; }
+WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
+  GpuPlane p;
+  p.normalDistance = make_vec4(normal.x, normal.y, normal.z, distance);
+  p.info = make_uvec4(material, 0u, 0u, 0u);
+  return p;
+}
 
 // GpuMaterial.info.x: which BSDF the material has.
 #define WP_MATERIAL_GLTF 0u     // glTF metallic-roughness mixture (shaders/common/material.h)
@@ -357,6 +430,14 @@ WP_FN vec3 shadowRayContribution(ShadowRay s) {
   return make_vec3(s.contribution.x, s.contribution.y, s.contribution.z);
 }
 WP_FN float shadowRayTime(ShadowRay s) { return s.contribution.w; }
+WP_FN ShadowRay makeShadowRay(vec3 origin, uint pathSlot, vec3 direction, float rayLength, vec3 contribution,
+                              float time) {
+  ShadowRay s;
+  s.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
+  s.direction = make_vec4(direction.x, direction.y, direction.z, rayLength);
+  s.contribution = make_vec4(contribution.x, contribution.y, contribution.z, time);
+  return s;
+}
 
 // Queue sizes and indirect dispatch arguments, written on the GPU. Kernels address it as a
 // flat uint array (atomics need a plain uint lvalue) through the word indices below.

@@ -49,11 +49,65 @@ WP_FN float triangleLightArea(GpuLight light) { return light.v0.w; }
 WP_FN uint triangleLightShading(GpuLight light) { return light.info.z; }
 WP_FN uint triangleLightTexture(GpuLight light) { return light.info.w; }
 
+WP_FN vec3 punctualPositionAtOpen(GpuLight light) { return make_vec3(light.v0.x, light.v0.y, light.v0.z); }
+WP_FN vec3 punctualPositionAtClose(GpuLight light) { return make_vec3(light.edge2.x, light.edge2.y, light.edge2.z); }
+WP_FN vec3 punctualDirectionAtOpen(GpuLight light) { return make_vec3(light.edge1.x, light.edge1.y, light.edge1.z); }
+WP_FN vec3 punctualDirectionAtClose(GpuLight light) {
+  return make_vec3(light.motion.x, light.motion.y, light.motion.z);
+}
+WP_FN float spotCosOuter(GpuLight light) { return light.v0.w; }
+WP_FN float spotCosInner(GpuLight light) { return light.motion.w; }
+
+// An emissive triangle (v0, v1, v2) of area `area`, emitting `emission` (one-sided unless
+// doubleSided) with selection weight `weight` (GpuLight.emission.w), whose shading record
+// and emissive texture are `shading` and `texture`. packScene fills in the alias table.
+WP_FN GpuLight makeTriangleLight(vec3 v0, vec3 v1, vec3 v2, float area, vec3 emission, float weight,
+                                 bool doubleSided, uint shading, uint texture) {
+  vec3 edge1 = v1 - v0;
+  vec3 edge2 = v2 - v0;
+  GpuLight light;
+  light.v0 = make_vec4(v0.x, v0.y, v0.z, area);
+  light.edge1 = make_vec4(edge1.x, edge1.y, edge1.z, 0.0f);
+  light.edge2 = make_vec4(edge2.x, edge2.y, edge2.z, 0.0f);
+  light.emission = make_vec4(emission.x, emission.y, emission.z, weight);
+  light.motion = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
+  light.info = make_uvec4(0u, WP_LIGHT_TRIANGLE | (doubleSided ? WP_LIGHT_DOUBLE_SIDED : 0u), shading, texture);
+  return light;
+}
+
+// A punctual light of kind `kind` (WP_LIGHT_POINT, _SPOT or _DIRECTIONAL) where it is and
+// where it points at shutter open and close, with a spot's cone cosines, its intensity (or
+// irradiance) and selection weight. packScene fills in the alias table.
+WP_FN GpuLight makePunctualLight(uint kind, vec3 positionAtOpen, vec3 positionAtClose, vec3 directionAtOpen,
+                                 vec3 directionAtClose, float cosOuter, float cosInner, vec3 intensity,
+                                 float weight) {
+  GpuLight light;
+  light.v0 = make_vec4(positionAtOpen.x, positionAtOpen.y, positionAtOpen.z, cosOuter);
+  light.edge1 = make_vec4(directionAtOpen.x, directionAtOpen.y, directionAtOpen.z, 0.0f);
+  light.edge2 = make_vec4(positionAtClose.x, positionAtClose.y, positionAtClose.z, 0.0f);
+  light.emission = make_vec4(intensity.x, intensity.y, intensity.z, weight);
+  light.motion = make_vec4(directionAtClose.x, directionAtClose.y, directionAtClose.z, cosInner);
+  light.info = make_uvec4(0u, kind, WP_INVALID, WP_INVALID);
+  return light;
+}
+
+// The light with its probability of being selected by power, and its alias-table entry:
+// keep it if the fraction of u * n is below `threshold`, else take light `alias`.
+WP_FN GpuLight withPowerProbability(GpuLight light, float probability) {
+  light.edge1.w = probability;
+  return light;
+}
+WP_FN GpuLight withAliasEntry(GpuLight light, float threshold, uint alias) {
+  light.edge2.w = threshold;
+  light.info.x = alias;
+  return light;
+}
+
 // A punctual light's position at shutter time u in [0, 1): straight from its place at
 // shutter open to its place at close, as instances translate (motion.h).
 WP_FN vec3 punctualPosition(GpuLight light, float time) {
-  vec3 open = make_vec3(light.v0.x, light.v0.y, light.v0.z);
-  vec3 close = make_vec3(light.edge2.x, light.edge2.y, light.edge2.z);
+  vec3 open = punctualPositionAtOpen(light);
+  vec3 close = punctualPositionAtClose(light);
   return open + (close - open) * time;
 }
 
@@ -61,8 +115,8 @@ WP_FN vec3 punctualPosition(GpuLight light, float time) {
 // interpolated and normalized (exact at the ends; for a light that turns during the shutter,
 // close to the slerp of the turn).
 WP_FN vec3 punctualDirection(GpuLight light, float time) {
-  vec3 open = make_vec3(light.edge1.x, light.edge1.y, light.edge1.z);
-  vec3 close = make_vec3(light.motion.x, light.motion.y, light.motion.z);
+  vec3 open = punctualDirectionAtOpen(light);
+  vec3 close = punctualDirectionAtClose(light);
   return normalize(open + (close - open) * time);
 }
 
@@ -71,8 +125,8 @@ WP_FN vec3 punctualDirection(GpuLight light, float time) {
 // keeps it. `cosAngle` is the cosine between the spot's direction and the direction to the
 // lit point.
 WP_FN float spotFalloff(GpuLight light, float cosAngle) {
-  float cosOuter = light.v0.w;
-  float cosInner = light.motion.w;
+  float cosOuter = spotCosOuter(light);
+  float cosInner = spotCosInner(light);
   float t = clamp((cosAngle - cosOuter) / max(cosInner - cosOuter, 1e-3f), 0.0f, 1.0f);
   return t * t;
 }

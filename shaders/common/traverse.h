@@ -30,8 +30,10 @@ WP_STRUCT_END(Hit)
 
 // The children of a node that the ray reaches before tMax, the nearer one first.
 WP_STRUCT(ChildHits)
-  uvec4 children;  // x, y: index of the first and second child reached; z, w: their leaf
-                   // counts (0: interior node)
+  uint nearIndex;  // index of the first child reached
+  uint farIndex;   // index of the second
+  uint nearCount;  // their leaf counts (0: interior node)
+  uint farCount;
   uint count;      // children reached: 0, 1 or 2
 WP_STRUCT_END(ChildHits)
 
@@ -46,9 +48,12 @@ WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float 
   bool hitRight = r.x <= r.y && rightIndex != WP_INVALID;
   bool rightFirst = hitRight && (!hitLeft || r.x < l.x);
   ChildHits c;
-  c.children = rightFirst
-      ? make_uvec4(rightIndex, leftIndex, nodeRightCount(node), nodeLeftCount(node))
-      : make_uvec4(leftIndex, rightIndex, nodeLeftCount(node), nodeRightCount(node));
+  uint leftCount = nodeLeftCount(node);
+  uint rightCount = nodeRightCount(node);
+  c.nearIndex = rightFirst ? rightIndex : leftIndex;
+  c.farIndex = rightFirst ? leftIndex : rightIndex;
+  c.nearCount = rightFirst ? rightCount : leftCount;
+  c.farCount = rightFirst ? leftCount : rightCount;
   c.count = (hitLeft ? 1u : 0u) + (hitRight ? 1u : 0u);
   return c;
 }
@@ -108,14 +113,14 @@ WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, 
   for (;;) {
     while (node != WP_INVALID) {
       ChildHits b = intersectChildren(WP_LOAD(nodes, node), o, invDir, hit.t);
-      uint nearEntry = packEntry(b.children.x, b.children.z);
+      uint nearEntry = packEntry(b.nearIndex, b.nearCount);
       if (b.count == 2u) {
-        stack[sp] = packEntry(b.children.y, b.children.w);
+        stack[sp] = packEntry(b.farIndex, b.farCount);
         ++sp;
       }
       node = WP_INVALID;
-      if (b.count > 0u && b.children.z == 0u) {
-        node = b.children.x;
+      if (b.count > 0u && b.nearCount == 0u) {
+        node = b.nearIndex;
       } else {
         if (b.count > 0u && leaf == WP_INVALID) {
           leaf = nearEntry;
@@ -211,11 +216,11 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
     if (entryCount(entry) == 0u) {
       ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
       if (c.count == 2u) {
-        stack[sp] = packEntry(c.children.y, c.children.w);
+        stack[sp] = packEntry(c.farIndex, c.farCount);
         ++sp;
       }
       if (c.count > 0u) {
-        entry = packEntry(c.children.x, c.children.z);
+        entry = packEntry(c.nearIndex, c.nearCount);
         continue;
       }
     } else {

@@ -39,22 +39,13 @@ using gpu::luminance;
 
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-void setChild(glm::vec4& lo, glm::vec4& hi, const Aabb& bounds, uint32_t index, uint32_t count) {
-  lo = glm::vec4(bounds.min, gpu::asFloat(index));
-  hi = glm::vec4(bounds.max, gpu::asFloat(count));
-}
-
-void setEmptyChild(glm::vec4& lo, glm::vec4& hi) {
-  setChild(lo, hi, Aabb{}, WP_INVALID, 0);
-}
-
-gpu::GpuInstance makeInstance(const glm::mat4& worldToObject, glm::uvec4 info) {
+gpu::GpuInstance makeInstance(const glm::mat4& worldToObject, uint32_t kind, uint32_t bvhRootOrMaterial) {
   // glm matrices are column-major: row r is (m[0][r], m[1][r], m[2][r], m[3][r]).
   glm::mat4 rows = glm::transpose(worldToObject);
-  return {rows[0], rows[1], rows[2], info};
+  return gpu::makeGpuInstance(rows[0], rows[1], rows[2], kind, bvhRootOrMaterial);
 }
 
-// Fills the lights' pmf (edge1.w) and alias table (edge2.w, info.x) with Vose's method, in
+// Fills the lights' pmf and alias table with Vose's method, in
 // double so the table reproduces the pmf to float precision. Zero total power (impossible
 // for emissive triangles of positive area, unless it underflows) falls back to uniform.
 void buildLightTable(std::vector<gpu::GpuLight>& lights, const std::vector<double>& power) {
@@ -71,7 +62,7 @@ void buildLightTable(std::vector<gpu::GpuLight>& lights, const std::vector<doubl
   std::vector<uint32_t> small, large;
   for (size_t i = 0; i < n; ++i) {
     double pmf = uniform ? 1.0 / static_cast<double>(n) : power[i] / total;
-    lights[i].edge1.w = static_cast<float>(pmf);
+    lights[i] = gpu::withPowerProbability(lights[i], static_cast<float>(pmf));
     scaled[i] = pmf * static_cast<double>(n);
     (scaled[i] < 1.0 ? small : large).push_back(static_cast<uint32_t>(i));
   }
@@ -80,16 +71,14 @@ void buildLightTable(std::vector<gpu::GpuLight>& lights, const std::vector<doubl
     small.pop_back();
     uint32_t l = large.back();
     large.pop_back();
-    lights[s].edge2.w = static_cast<float>(scaled[s]);
-    lights[s].info.x = l;
+    lights[s] = gpu::withAliasEntry(lights[s], static_cast<float>(scaled[s]), l);
     scaled[l] = (scaled[l] + scaled[s]) - 1.0;
     (scaled[l] < 1.0 ? small : large).push_back(l);
   }
   // What is left has probability 1/n up to rounding: it always keeps itself.
   for (const std::vector<uint32_t>* rest : {&small, &large}) {
     for (uint32_t i : *rest) {
-      lights[i].edge2.w = 1.0f;
-      lights[i].info.x = i;
+      lights[i] = gpu::withAliasEntry(lights[i], 1.0f, i);
     }
   }
 }
@@ -114,9 +103,9 @@ uint32_t gpuMaterialKind(Material::Bsdf bsdf) {
 
 void packTextures(const Scene& scene, GpuScene& out) {
   for (const Texture& texture : scene.textures) {
-    const uint32_t wrap = uint32_t(texture.wrapS) | (uint32_t(texture.wrapT) << 2u);
-    const uint32_t flags = wrap | (texture.srgb ? WP_TEXTURE_SRGB : 0u) | (texture.nearest ? WP_TEXTURE_NEAREST : 0u);
-    out.textures.push_back({glm::uvec4(uint32_t(out.texels.size()), texture.width, texture.height, flags)});
+    out.textures.push_back(gpu::makeGpuTexture(uint32_t(out.texels.size()), texture.width, texture.height,
+                                               uint32_t(texture.wrapS), uint32_t(texture.wrapT), texture.srgb,
+                                               texture.nearest));
     out.texels.insert(out.texels.end(), texture.rgba.begin(), texture.rgba.end());
   }
   // The Vulkan texel view reads four texels per RGBA32UI element.
@@ -194,7 +183,7 @@ struct InstanceCandidates {
   std::vector<std::optional<MotionKeys>> motion;
 
   void add(const glm::mat4& toWorld, const std::optional<glm::mat4>& toWorldAtClose, const Aabb& objectBounds,
-           glm::uvec4 info, uint32_t meshIndex, const std::string& what) {
+           uint32_t kind, uint32_t bvhRootOrMaterial, uint32_t meshIndex, const std::string& what) {
     if (!isInvertible(toWorld)) {
       warn(what + " has a singular transform (a zero scale?) and is left out");
       return;
@@ -209,7 +198,7 @@ struct InstanceCandidates {
         keys = makeMotionKeys(toWorld, *toWorldAtClose);
       }
     }
-    records.push_back(makeInstance(glm::inverse(toWorld), info));
+    records.push_back(makeInstance(glm::inverse(toWorld), kind, bvhRootOrMaterial));
     worldBounds.push_back(keys ? sweptBounds(*keys, objectBounds) : transformBox(toWorld, objectBounds));
     names.push_back(what);
     mesh.push_back(meshIndex);
@@ -230,14 +219,9 @@ void appendLights(const Scene& scene, const Mesh& mesh, const std::vector<pack_d
     }
     const Material& material = scene.materials[mesh.materials[emitter.triangle]];
     float area = 0.5f * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
-    gpu::GpuLight& light = lights.emplace_back();
-    light.v0 = glm::vec4(v[0], area);
-    light.edge1 = glm::vec4(v[1] - v[0], 0.0f);
-    light.edge2 = glm::vec4(v[2] - v[0], 0.0f);
-    light.emission = glm::vec4(material.emission, emitter.weight);
-    light.motion = glm::vec4(0.0f);
-    light.info = glm::uvec4(0u, WP_LIGHT_TRIANGLE | (material.doubleSided ? WP_LIGHT_DOUBLE_SIDED : 0u), emitter.packed,
-                            textureIndex(material.emissiveTexture));
+    lights.push_back(gpu::makeTriangleLight(v[0], v[1], v[2], area, material.emission, emitter.weight,
+                                            material.doubleSided, emitter.packed,
+                                            textureIndex(material.emissiveTexture)));
     power.push_back(std::numbers::pi * emitter.weight * area * (material.doubleSided ? 2.0 : 1.0));
   }
 }
@@ -278,14 +262,11 @@ void appendPunctualLights(const Scene& scene, double sceneRadius, std::vector<gp
     PunctualLight closed = light;
     closed.lightToWorld = light.lightToWorldAtClose.value_or(light.lightToWorld);
     const bool spot = light.kind == PunctualLight::Kind::Spot;
-    gpu::GpuLight g{};
-    g.v0 = glm::vec4(light.position(), spot ? std::cos(light.outerConeAngle) : 0.0f);
-    g.edge1 = glm::vec4(light.direction(), 0.0f);
-    g.edge2 = glm::vec4(closed.position(), 0.0f);
-    g.emission = glm::vec4(light.intensity, luminance(light.intensity));
-    g.motion = glm::vec4(closed.direction(), spot ? std::cos(light.innerConeAngle) : 1.0f);
-    g.info = glm::uvec4(0u, gpuLightKind(light.kind), WP_INVALID, WP_INVALID);
-    lights.push_back(g);
+    lights.push_back(gpu::makePunctualLight(gpuLightKind(light.kind), light.position(), closed.position(),
+                                            light.direction(), closed.direction(),
+                                            spot ? std::cos(light.outerConeAngle) : 0.0f,
+                                            spot ? std::cos(light.innerConeAngle) : 1.0f, light.intensity,
+                                            luminance(light.intensity)));
     power.push_back(punctualFlux(light, sceneRadius));
   }
 }
@@ -356,13 +337,14 @@ uint32_t gpuNodeCount(const Bvh& bvh) {
 void writeNodes(const Bvh& bvh, uint32_t primBase, uint32_t base, std::vector<gpu::BvhNode>& out) {
   if (bvh.nodes.size() <= 1) {
     gpu::BvhNode& node = out[base];
+    const Aabb empty;  // min > max
     if (bvh.nodes.empty()) {
-      setEmptyChild(node.leftMin, node.leftMax);
+      node = gpu::withLeftChild(node, empty.min, empty.max, WP_INVALID, 0);
     } else {
       const Bvh::Node& leaf = bvh.nodes[0];
-      setChild(node.leftMin, node.leftMax, leaf.bounds, primBase + leaf.index, leaf.count);
+      node = gpu::withLeftChild(node, leaf.bounds.min, leaf.bounds.max, primBase + leaf.index, leaf.count);
     }
-    setEmptyChild(node.rightMin, node.rightMax);
+    node = gpu::withRightChild(node, empty.min, empty.max, WP_INVALID, 0);
     return;
   }
   std::vector<uint32_t> gpuIndex(bvh.nodes.size(), WP_INVALID);
@@ -384,8 +366,8 @@ void writeNodes(const Bvh& bvh, uint32_t primBase, uint32_t base, std::vector<gp
     gpu::BvhNode& g = out[gpuIndex[i]];
     const Bvh::Node& left = bvh.nodes[n.index];
     const Bvh::Node& right = bvh.nodes[n.index + 1];
-    setChild(g.leftMin, g.leftMax, left.bounds, childIndex(n.index), left.count);
-    setChild(g.rightMin, g.rightMax, right.bounds, childIndex(n.index + 1), right.count);
+    g = gpu::withLeftChild(g, left.bounds.min, left.bounds.max, childIndex(n.index), left.count);
+    g = gpu::withRightChild(g, right.bounds.min, right.bounds.max, childIndex(n.index + 1), right.count);
   }
 }
 
@@ -404,8 +386,7 @@ void writeTriangles(const Scene& scene, const Mesh& mesh, const Bvh& bvh, MeshPr
                                     textureIndex(material.emissiveTexture));
       emitter.weight = std::max(luminance(mean), kMinimumTextureShare * luminance(material.emission));
     }
-    out.triangles[packed] = {glm::vec4(v[0], 0.0f), glm::vec4(v[1] - v[0], 0.0f), glm::vec4(v[2] - v[0], 0.0f),
-                             glm::uvec4(mesh.materials[t], prims.ordinal[t], 0u, 0u)};
+    out.triangles[packed] = gpu::makeGpuTriangle(v[0], v[1], v[2], mesh.materials[t], prims.ordinal[t]);
     out.triangleShading[packed] = shading;
   }
 }
@@ -419,14 +400,14 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
     const GpuMeshRange& range = out.meshes[inst.mesh];
     if (range.triangleCount > 0) {
       candidates.add(inst.objectToWorld, inst.objectToWorldAtClose, meshes[inst.mesh].bounds,
-                     glm::uvec4(WP_INSTANCE_MESH, range.rootNode, 0u, WP_INVALID), inst.mesh,
+                     WP_INSTANCE_MESH, range.rootNode, inst.mesh,
                      "instance " + std::to_string(i) + " of mesh '" + scene.meshes[inst.mesh].name + "'");
     }
   }
   Aabb unitCube{glm::vec3(-1.0f), glm::vec3(1.0f)};
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     candidates.add(scene.spheres[i].objectToWorld, scene.spheres[i].objectToWorldAtClose, unitCube,
-                   glm::uvec4(WP_INSTANCE_SPHERE, scene.spheres[i].material, WP_INVALID, WP_INVALID), WP_INVALID,
+                   WP_INSTANCE_SPHERE, scene.spheres[i].material, WP_INVALID,
                    "sphere " + std::to_string(i));
   }
 
@@ -461,10 +442,8 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
   for (uint32_t c : tlas.primIndices) {
     gpu::GpuInstance inst = candidates.records[c];
     uint32_t mesh = candidates.mesh[c];
-    if (candidates.motion[c]) {
-      inst.info.z = WP_INVALID;
-    } else if (mesh != WP_INVALID) {
-      inst.info.z = static_cast<uint32_t>(out.lights.size());
+    if (mesh != WP_INVALID && !candidates.motion[c]) {
+      inst = gpu::withInstanceFirstLight(inst, static_cast<uint32_t>(out.lights.size()));
       appendLights(scene, scene.meshes[mesh], meshes[mesh].emitters, candidates.objectToWorld[c], out.lights, power);
     }
     out.instances.push_back(inst);
@@ -473,7 +452,7 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
   out.placedInstances = static_cast<uint32_t>(out.instances.size());
   for (uint32_t j = 0; j < out.placedInstances; ++j) {
     if (const std::optional<MotionKeys>& keys = candidates.motion[tlas.primIndices[j]]) {
-      out.instances[j].info.w = static_cast<uint32_t>(out.instances.size());
+      out.instances[j] = gpu::withInstanceMotionKeys(out.instances[j], static_cast<uint32_t>(out.instances.size()));
       out.instances.push_back(keys->open);
       out.instances.push_back(keys->close);
     }

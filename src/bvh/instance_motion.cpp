@@ -46,13 +46,12 @@ std::optional<Trs> decompose(const glm::mat4& m) {
 
 gpu::GpuInstance trsKey(const Trs& trs) {
   const glm::quat& q = trs.rotation;
-  return {glm::vec4(trs.translation, 0.0f), glm::vec4(q.x, q.y, q.z, q.w), glm::vec4(trs.scale, 0.0f),
-          glm::uvec4(WP_MOTION_KEY_TRS, 0u, 0u, 0u)};
+  return gpu::makeTrsMotionKey(trs.translation, glm::vec4(q.x, q.y, q.z, q.w), trs.scale);
 }
 
 gpu::GpuInstance matrixKey(const glm::mat4& m) {
   glm::mat4 rows = glm::transpose(m);
-  return {rows[0], rows[1], rows[2], glm::uvec4(WP_MOTION_KEY_MATRIX, 0u, 0u, 0u)};
+  return gpu::makeMatrixMotionKey(rows[0], rows[1], rows[2]);
 }
 
 glm::mat4 toMat4(const gpu::AffineRows& m) {

@@ -149,11 +149,13 @@ void SceneUpdater::relayoutNodes() {
     uint32_t shift = range.rootNode - oldRoot[m];
     for (uint32_t i = oldRoot[m]; i < oldRoot[m + 1]; ++i) {
       gpu::BvhNode node = gpu_.nodes[i];
-      for (auto [lo, hi] : {std::pair{&node.leftMin, &node.leftMax}, std::pair{&node.rightMin, &node.rightMax}}) {
-        bool interior = gpu::asUint(hi->w) == 0 && gpu::asUint(lo->w) != WP_INVALID;
-        if (interior) {
-          lo->w = gpu::asFloat(gpu::asUint(lo->w) + shift);
-        }
+      if (gpu::nodeLeftCount(node) == 0 && gpu::nodeLeftIndex(node) != WP_INVALID) {
+        node = gpu::withLeftChild(node, gpu::nodeLeftMin(node), gpu::nodeLeftMax(node),
+                                  gpu::nodeLeftIndex(node) + shift, 0);
+      }
+      if (gpu::nodeRightCount(node) == 0 && gpu::nodeRightIndex(node) != WP_INVALID) {
+        node = gpu::withRightChild(node, gpu::nodeRightMin(node), gpu::nodeRightMax(node),
+                                   gpu::nodeRightIndex(node) + shift, 0);
       }
       nodes.push_back(node);
     }
