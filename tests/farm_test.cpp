@@ -33,10 +33,12 @@ protected:
   // its first checkpoint and its end. --sky none, which the Cornell box has anyway, leaves the
   // lighting rule nothing to note, so a refusal is the only line.
   std::vector<std::string> renderArgs(const std::string& output, std::vector<std::string> extra = {},
-                                      const std::string& spp = "64") {
+                                      const std::string& spp = "") {
     std::vector<std::string> args = {"render", scene.string(), "-o", (dir / output).string(), "--backend", GetParam(),
-                                     "--width", "48", "--height", "40", "--spp", spp, "--max-paths", "512",
+                                     "--width", "48", "--height", "40", "--spp", spp.empty() ? samplesPerPixel : spp,
+                                     "--max-paths", "512",
                                      "--sky", "none"};
+    args.insert(args.end(), extraFlags.begin(), extraFlags.end());
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
   }
@@ -80,14 +82,26 @@ protected:
   fs::path dir;
   fs::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
   fs::path checkpoint;
+  std::vector<std::string> extraFlags;  // every render of the test gets these
+  std::string samplesPerPixel = "64";   // --spp of every render unless renderArgs is given one
 };
 
+// Radiance, variance and the feature passes (which must be there) the same bit for bit.
 void expectBitIdentical(const RadianceImage& a, const RadianceImage& b) {
   ASSERT_EQ(a.mean.size(), b.mean.size());
   ASSERT_EQ(a.variance.size(), b.variance.size());
+  ASSERT_EQ(a.albedo.size(), a.mean.size());
+  ASSERT_EQ(a.normal.size(), a.mean.size());
+  ASSERT_EQ(a.depth.size(), a.mean.size());
+  ASSERT_EQ(b.albedo.size(), b.mean.size());
+  ASSERT_EQ(b.normal.size(), b.mean.size());
+  ASSERT_EQ(b.depth.size(), b.mean.size());
   for (size_t i = 0; i < a.mean.size(); ++i) {
     ASSERT_EQ(a.mean[i], b.mean[i]) << "pixel " << i;
     ASSERT_EQ(a.variance[i], b.variance[i]) << "pixel " << i;
+    ASSERT_EQ(a.albedo[i], b.albedo[i]) << "pixel " << i;
+    ASSERT_EQ(a.normal[i], b.normal[i]) << "pixel " << i;
+    ASSERT_EQ(a.depth[i], b.depth[i]) << "pixel " << i;
   }
 }
 
@@ -115,6 +129,26 @@ TEST_P(Farm, SigtermWritesACheckpointExitsResumableAndTheResumeIsBitIdentical) {
   EXPECT_NE(stopped.err.find("run the same command with --resume"), std::string::npos) << stopped.err;
   EXPECT_FALSE(fs::exists(dir / "out.exr"));
   expectBitIdentical(resume(), uninterrupted);
+}
+
+// Adaptive sampling keeps its state (each pixel's sample count and whether it stopped) in
+// the accumulation, so a resumed adaptive render is the uninterrupted one bit for bit too.
+// An 8x8 crop makes a pass of 512 paths 8 samples of every pixel, so the render is stopped
+// at 8 samples or later, after the first check (at 4) has stopped some pixels: a resume that
+// forgot them would give those pixels more samples. 1024 spp at most make 128 passes, so
+// the signal finds the render still going.
+TEST_P(Farm, AnAdaptiveRenderResumesBitIdentical) {
+  extraFlags = {"--adaptive", "0.2", "--adaptive-min-samples", "4", "--region", "20,16,28,24"};
+  samplesPerPixel = "1024";
+  RadianceImage uninterrupted = render("reference.exr");
+  ASSERT_FALSE(uninterrupted.sampleCount.empty());
+  EXPECT_NE(std::count(uninterrupted.sampleCount.begin(), uninterrupted.sampleCount.end(), 4.0f), 0)
+      << "no pixel stopped at the first check";
+  RunResult stopped = interruptedRender(SIGTERM, std::chrono::milliseconds(0));
+  EXPECT_EQ(stopped.exitCode, 75) << stopped.err;
+  RadianceImage resumed = resume();
+  expectBitIdentical(resumed, uninterrupted);
+  EXPECT_EQ(resumed.sampleCount, uninterrupted.sampleCount);
 }
 
 TEST_P(Farm, SigintWithoutCheckpointWritesNothing) {
@@ -162,6 +196,19 @@ TEST_P(Farm, FourSampleBatchesMergeIntoTheWholeRender) {
       if (m > 0) largestMean = std::max(largestMean, meanError / m);
       largestVariance = std::max(largestVariance, varianceError / ((m * m + 64.0 * v) / 63.0));
     }
+  }
+  // The feature passes are means too, of terms at most 1 in size (albedo, normal) or
+  // positive (depth): within 64 u of the sum of the terms' sizes.
+  ASSERT_EQ(merged.albedo.size(), whole.albedo.size());
+  ASSERT_EQ(merged.normal.size(), whole.normal.size());
+  ASSERT_EQ(merged.depth.size(), whole.depth.size());
+  ASSERT_FALSE(whole.depth.empty());
+  for (size_t i = 0; i < whole.mean.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(merged.albedo[i][c], whole.albedo[i][c], 1e-5) << "pixel " << i << " channel " << c;
+      EXPECT_NEAR(merged.normal[i][c], whole.normal[i][c], 1e-5) << "pixel " << i << " channel " << c;
+    }
+    EXPECT_NEAR(merged.depth[i], whole.depth[i], 1e-5 * whole.depth[i]) << "pixel " << i;
   }
   std::printf("merged 4 batches: %zu of %zu means differ, largest relative difference of a mean %.3g, largest difference of a variance %.3g of the mean square\n",
               differing, 3 * whole.mean.size(), largestMean, largestVariance);

@@ -38,6 +38,8 @@ Checkpoint smallCheckpoint() {
   for (int i = 0; i < 4; ++i) {
     c.accumulation.sum.push_back(glm::vec4(0.1f * i, 1e-30f, 3.0e30f, 0.0f));
     c.accumulation.sumSquares.push_back(glm::vec4(std::nextafter(1.0f, 2.0f), 0.0f, 7.0f * i, 0.0f));
+    c.accumulation.albedoDepth.push_back(glm::vec4(0.25f * i, 0.5f, 1.0f / 3.0f, 1e10f + 3.0f * i));
+    c.accumulation.normal.push_back(glm::vec4(-0.5f * i, 1e-20f, std::nextafter(-1.0f, 0.0f), 0.0f));
   }
   return c;
 }
@@ -57,6 +59,8 @@ TEST(CheckpointFile, RoundTripsEveryBit) {
   EXPECT_EQ(r.device, c.device);
   EXPECT_EQ(r.accumulation.sum, c.accumulation.sum);
   EXPECT_EQ(r.accumulation.sumSquares, c.accumulation.sumSquares);
+  EXPECT_EQ(r.accumulation.albedoDepth, c.accumulation.albedoDepth);
+  EXPECT_EQ(r.accumulation.normal, c.accumulation.normal);
 }
 
 TEST(CheckpointFile, EveryTruncationAndEveryFlippedByteIsRefused) {
@@ -83,7 +87,8 @@ TEST(CheckpointFile, EveryTruncationAndEveryFlippedByteIsRefused) {
 }
 
 // A part of `samples` samples per pixel as the renderer writes it: the mean and the
-// variance of the mean (the unbiased sample variance over n).
+// variance of the mean (the unbiased sample variance over n), and feature passes that are
+// means of the samples too (albedo the samples, normal their negative, depth their x).
 FramePart makePart(const std::vector<std::vector<glm::dvec3>>& samples, uint32_t first, uint32_t count,
                    uint32_t width, uint32_t height, uint32_t spp) {
   FramePart part;
@@ -105,12 +110,16 @@ FramePart makePart(const std::vector<std::vector<glm::dvec3>>& samples, uint32_t
     for (uint32_t k = first; k < first + count; ++k) m2 += (pixel[k] - mean) * (pixel[k] - mean);
     part.image.mean.push_back(glm::vec3(mean));
     part.image.variance.push_back(count > 1 ? glm::vec3(m2 / double(count - 1) / double(count)) : glm::vec3(0.0f));
+    part.image.albedo.push_back(glm::vec3(mean));
+    part.image.normal.push_back(glm::vec3(-mean));
+    part.image.depth.push_back(float(mean.x));
   }
   return part;
 }
 
 // Batches of unequal sizes merge into the mean and variance of the mean over all samples,
-// computed directly in double: to float rounding of the parts' values (2e-6 relative).
+// and the feature passes into their means over all samples, computed directly in double:
+// to float rounding of the parts' values (2e-6 relative).
 TEST(MergeParts, BatchesGiveTheMeanAndVarianceOfAllSamples) {
   const uint32_t width = 5, height = 3, spp = 40;
   std::mt19937 rng(7);
@@ -126,7 +135,10 @@ TEST(MergeParts, BatchesGiveTheMeanAndVarianceOfAllSamples) {
     for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(merged.mean[i][c], all.image.mean[i][c], 2e-6 * all.image.mean[i][c]) << i;
       EXPECT_NEAR(merged.variance[i][c], all.image.variance[i][c], 2e-5 * all.image.variance[i][c]) << i;
+      EXPECT_NEAR(merged.albedo[i][c], all.image.albedo[i][c], 2e-6 * all.image.albedo[i][c]) << i;
+      EXPECT_NEAR(merged.normal[i][c], all.image.normal[i][c], 2e-6 * -all.image.normal[i][c]) << i;
     }
+    EXPECT_NEAR(merged.depth[i], all.image.depth[i], 2e-6 * all.image.depth[i]) << i;
   }
   EXPECT_EQ(merged.record->firstSample, 0u);
   EXPECT_EQ(merged.record->lastSample, spp - 1);

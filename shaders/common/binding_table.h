@@ -47,10 +47,11 @@
   X(triangleShading, 16, GpuTriangleShading, 8, RECORD, TEXELS, ALL)             \
   X(textures, 17, GpuTexture, 1, RECORD, TEXELS, ALL)                             \
   X(texels, 18, uint, 0, WORDS, TEXELS, ALL)                                      \
-  X(rays, 19, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \
-  X(hits, 20, HitRecord, 1, RECORD, TEXEL_VIEW, VULKAN)                           \
-  X(shadowRays, 21, ShadowRay, 3, RECORD, TEXEL_VIEW, VULKAN)                      \
-  X(bsdfTables, 22, float, 0, R32, CONSTANT, VULKAN)
+  X(pathFeatures, 19, PathFeatures, 2, NONE, STORAGE, ALL)                         \
+  X(rays, 20, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \
+  X(hits, 21, HitRecord, 1, RECORD, TEXEL_VIEW, VULKAN)                           \
+  X(shadowRays, 22, ShadowRay, 3, RECORD, TEXEL_VIEW, VULKAN)                      \
+  X(bsdfTables, 23, float, 0, R32, CONSTANT, VULKAN)
 
 // What the rows mean:
 //   params          RenderParams, the render's settings
@@ -61,10 +62,12 @@
 //   shadowRays      ShadowRay[maxPaths]: the shadow queue
 //   pathRadiance    radiance of each path of the pass
 //   counters        QueueCounters as words (WP_COUNTER_*)
-//   accumulation    vec4[2 * pixels]: per-pixel sum of radiance, then sum of squares
+//   accumulation    vec4[WP_ACCUMULATION_LAYERS * pixels]: per-pixel sums, one layer after
+//                   another (accumulation.h: radiance, its square, the feature passes)
 //   skyRadiance, skyMarginal, skyConditional   the sky's texels and distributions
 //                   (environment.h)
 //   triangleShading parallel to the triangles
+//   pathFeatures    PathFeatures[maxPaths]: the feature passes of each path of the pass
 //   texels          RGBA8 texels of every texture, r in the low byte
 //   bsdfTables      the BSDF's constant tables (energy_compensation.h), from the header's own
 //                   array. Vulkan only: OpenCL and C++ read that array as a constant, but

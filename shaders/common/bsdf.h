@@ -52,6 +52,11 @@ WP_FN BsdfEval evalBsdf(GpuMaterial m, vec3 wo, vec3 wi, uint flags) {
   return evalMaterial(surfaceMaterialOf(m), wo, wi, flags);
 }
 
+// Whether the material reflects and transmits only in delta directions (materialIsPerfectlySpecular).
+WP_FN bool bsdfIsPerfectlySpecular(GpuMaterial m) {
+  return m.info.x != WP_MATERIAL_LAMBERT && materialIsPerfectlySpecular(surfaceMaterialOf(m));
+}
+
 // u in [0, 1)^3; see sampleMaterial for delta samples.
 WP_FN MaterialSample sampleBsdf(GpuMaterial m, vec3 wo, vec3 u, uint flags) {
   if (m.info.x == WP_MATERIAL_LAMBERT) {

@@ -17,6 +17,11 @@ WP_BEGIN
 
 #define WP_SHADE_EXTEND 1u  // ShadeResult.next is a ray to trace
 #define WP_SHADE_SHADOW 2u  // ShadeResult.shadow is a shadow ray to trace
+#define WP_SHADE_FEATURES 4u  // ShadeResult.features are the path's feature passes (see shadeHit)
+
+// The depth pass of a camera ray that leaves the scene: far, as the sky is, yet finite, so
+// that a pixel's mean over samples that hit and samples that miss stays a number.
+#define WP_DEPTH_MISS 1e10f
 
 // Shadow rays stop this fraction short of the light sample so the light itself does not
 // occlude it.
@@ -27,6 +32,7 @@ WP_STRUCT(ShadeResult)
   uint flags;        // WP_SHADE_* bits
   PathRay next;      // continuation of the path
   ShadowRay shadow;  // light sample to test for visibility
+  PathFeatures features;  // with WP_SHADE_FEATURES; its depth counts at bounce 0 only
 WP_STRUCT_END(ShadeResult)
 
 WP_FN vec3 xyz(vec4 v) { return make_vec3(v.x, v.y, v.z); }
@@ -57,9 +63,17 @@ WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
       weight = balanceHeuristic(bsdfPdfOfRay, skyPdf);
     }
   }
-  r.radiance = rayThroughput(ray) * environmentRadiance(WP_BUFFERS_ARG params.sky, direction) * weight;
+  vec3 sky = environmentRadiance(WP_BUFFERS_ARG params.sky, direction);
+  r.radiance = rayThroughput(ray) * sky * weight;
   if (rayBounce(ray) > 0u) {
     r.radiance = clampedContribution(params, r.radiance);
+  }
+  if (!rayFeaturesTaken(ray)) {
+    // The sky's albedo is its radiance clamped to [0, 1], so that a denoiser sees the edges
+    // of what stands against it; it has no normal.
+    vec3 skyAlbedo = clamp(sky, make_vec3(0.0f, 0.0f, 0.0f), make_vec3(1.0f, 1.0f, 1.0f));
+    r.features = makePathFeatures(skyAlbedo, make_vec3(0.0f, 0.0f, 0.0f), WP_DEPTH_MISS);
+    r.flags |= WP_SHADE_FEATURES;
   }
   return r;
 }
@@ -126,6 +140,7 @@ WP_STRUCT(PathVertex)
   float time;       // the path's shutter time
   uint pathSlot;
   uint bounce;
+  uint rayFlags;    // WP_RAY_* flags the continuation carries
 WP_STRUCT_END(PathVertex)
 
 // What a vertex may send on: the path's continuation, and its light sample's shadow ray
@@ -156,6 +171,7 @@ WP_FN PathVertex pathVertexAt(SurfaceHit s, vec3 wo, vec3 throughput, PathRay ra
   v.time = rayTime(ray);
   v.pathSlot = rayPathSlot(ray);
   v.bounce = rayBounce(ray);
+  v.rayFlags = rayFlagsOf(ray);
   return v;
 }
 
@@ -290,7 +306,8 @@ WP_FN NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial 
       vec3 origin = offsetRayOrigin(v.position, v.normal, wi);
       nextThroughput = nextThroughput / roulette.survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;
-      next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, roulette.samples, v.bounce + 1u);
+      next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, roulette.samples, v.bounce + 1u,
+                             v.rayFlags);
       next.exists = true;
     }
   }
@@ -326,12 +343,31 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);
   }
+
+  // The feature passes (Open Image Denoise's auxiliary images, Blender's denoising data):
+  // the albedo and the normal of the first vertex that is not perfectly specular (through
+  // smooth mirrors and glass they are those of what the path sees in them), and the depth of
+  // the camera ray's hit. The albedo is the base colour, textured: a plastic's diffuse
+  // colour, a metal's reflectivity, a glass's tint. The normal is the shading normal (normal
+  // map included) turned towards the ray.
+  bool takesFeatures = !rayFeaturesTaken(ray) && !bsdfIsPerfectlySpecular(m);
+  if (takesFeatures || rayBounce(ray) == 0u) {
+    vec3 n = dot(s.normal, wo) < 0.0f ? -s.shadingNormal : s.shadingNormal;
+    vec3 zero = make_vec3(0.0f, 0.0f, 0.0f);
+    r.features = makePathFeatures(takesFeatures ? albedoOf(m) : zero, takesFeatures ? n : zero,
+                                  cameraDepth(params.camera, direction, t));
+    r.flags |= WP_SHADE_FEATURES;
+  }
+
   r.radiance = emissionAtHit(WP_BUFFERS_ARG params, ray, s, m, wo, throughput, t);
   if (rayBounce(ray) > params.maxBounces) {
     return r;
   }
 
   PathVertex v = pathVertexAt(s, wo, throughput, ray);
+  if (takesFeatures) {
+    v.rayFlags |= WP_RAY_FEATURES_TAKEN;
+  }
   PathSamples samples = rayPathSamples(ray);
   uint samplerKind = params.samplerKind;
   uint firstDimension = vertexDimension(v.bounce);

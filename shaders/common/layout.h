@@ -352,10 +352,12 @@ WP_STRUCT(RenderParams)
   uint regionY;
   uint regionWidth;
   uint regionHeight;
+  // Adaptive sampling (accumulation.h): a pixel stops receiving samples once its estimated
+  // relative error is below adaptiveThreshold (0: off), checked from adaptiveMinSamples on.
+  float adaptiveThreshold;
+  uint adaptiveMinSamples;
   uint samplerKind;  // WP_SAMPLER_* (sampler.h)
   uint unused0;
-  uint unused1;
-  uint unused2;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
@@ -363,7 +365,7 @@ WP_STRUCT_END(RenderParams)
 //   direction: xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
 //   throughput: rgb; w: the path's shutter time in [0, 1) (motion blur)
 //   state: x: the sampler's state (PathSamples), y: bounce of the vertex this ray will hit,
-//     z: the path's sample index in its pixel, w: unused
+//     z: WP_RAY_* flags, w: the path's sample index in its pixel
 #define WP_FIELDS_PathRay(F) \
   F(vec4, origin)            \
   F(vec4, direction)         \
@@ -381,18 +383,44 @@ WP_FN float rayTime(PathRay r) { return r.throughput.w; }
 WP_FN PathSamples rayPathSamples(PathRay r) {
   PathSamples p;
   p.state = r.state.x;
-  p.sampleIndex = r.state.z;
+  p.sampleIndex = r.state.w;
   return p;
 }
 WP_FN uint rayBounce(PathRay r) { return r.state.y; }
+// PathRay flags.
+#define WP_RAY_FEATURES_TAKEN 1u  // the path's feature passes are recorded (PathFeatures)
+WP_FN uint rayFlagsOf(PathRay r) { return r.state.z; }
+WP_FN bool rayFeaturesTaken(PathRay r) { return (rayFlagsOf(r) & WP_RAY_FEATURES_TAKEN) != 0u; }
 WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
-                          PathSamples samples, uint bounce) {
+                          PathSamples samples, uint bounce, uint flags) {
   PathRay r;
   r.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
   r.direction = make_vec4(direction.x, direction.y, direction.z, bsdfPdf);
   r.throughput = make_vec4(throughput.x, throughput.y, throughput.z, time);
-  r.state = make_uvec4(samples.state, bounce, samples.sampleIndex, 0u);
+  r.state = make_uvec4(samples.state, bounce, flags, samples.sampleIndex);
   return r;
+}
+
+// The feature passes of one path (what denoisers take besides the image; integrator.h says
+// which vertex they come from): 32 bytes.
+//   albedoDepth: rgb: albedo; w: depth of the camera ray's hit along the camera's axis
+//   normal: xyz: world-space shading normal facing the ray, 0 for the sky; w: unused
+#define WP_FIELDS_PathFeatures(F) \
+  F(vec4, albedoDepth)            \
+  F(vec4, normal)
+WP_RECORD(PathFeatures)
+WP_FN vec3 featureAlbedo(PathFeatures f) { return make_vec3(f.albedoDepth.x, f.albedoDepth.y, f.albedoDepth.z); }
+WP_FN float featureDepth(PathFeatures f) { return f.albedoDepth.w; }
+WP_FN vec3 featureNormal(PathFeatures f) { return make_vec3(f.normal.x, f.normal.y, f.normal.z); }
+WP_FN PathFeatures withDepth(PathFeatures f, float depth) {
+  f.albedoDepth.w = depth;
+  return f;
+}
+WP_FN PathFeatures makePathFeatures(vec3 albedo, vec3 normal, float depth) {
+  PathFeatures f;
+  f.albedoDepth = make_vec4(albedo.x, albedo.y, albedo.z, depth);
+  f.normal = make_vec4(normal.x, normal.y, normal.z, 0.0f);
+  return f;
 }
 
 // Closest hit of the PathRay at the same queue position: 16 bytes.
@@ -467,6 +495,8 @@ WP_STRUCT(PassConstants)
   uint pathCount;
   uint bounce;  // of the extend, shade, advance or connect it is passed to
 WP_STRUCT_END(PassConstants)
+// PassConstants.bounce of the advance that runs right after generate (sizeFirstBounce).
+#define WP_AFTER_GENERATE 0xffffffffu
 
 WP_END
 

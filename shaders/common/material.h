@@ -37,6 +37,16 @@ WP_FN LobeWeights lobeWeightsOf(SurfaceMaterial m) {
   return w;
 }
 
+// Whether every lobe the material has is a delta lobe (a smooth mirror, smooth glass or a
+// mix of the two): what it shows is another surface's, which is where the feature passes
+// look (integrator.h).
+WP_FN bool materialIsPerfectlySpecular(SurfaceMaterial m) {
+  LobeWeights w = lobeWeightsOf(m);
+  float alpha = alphaFromRoughness(m.roughness);
+  return w.plastic <= 0.0f && (w.metal <= 0.0f || alpha < WP_DELTA_ALPHA) &&
+         (w.glass <= 0.0f || glassIsDelta(alpha, m.ior));
+}
+
 WP_FN BsdfEval addWeighted(BsdfEval sum, BsdfEval e, float weight) {
   sum.fCos = sum.fCos + e.fCos * weight;
   sum.pdf += e.pdf * weight;

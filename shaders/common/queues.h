@@ -63,16 +63,36 @@ WP_FN void writeDispatchArguments(WP_BUFFERS uint word, uint invocations) {
   WP_BUFFER(counters)[word + 2u] = 1u;
 }
 
-// Generate, before the pass's first bounce: the ray queue of bounce 0 holds the pass's
-// camera rays, every other queue and the ray totals start empty, and extend and shade of
-// bounce 0 are sized to the camera rays.
-WP_FN void startPassQueues(WP_BUFFERS uint pathCount, uint maxPaths) {
-  for (uint word = 0u; word < WP_COUNTER_WORDS; ++word) {
-    WP_BUFFER(counters)[word] = 0u;
+// Generate, before the pass's first bounce (the queues are empty: finishPassQueues): the ray
+// totals start at zero, extend and shade of bounce 0 are sized to the pass's paths, and
+// bounce 0's ray queue holds them, unless `appended`: then generate appends the camera rays
+// it traces (adaptive sampling leaves out the pixels that stopped), and the work items of
+// extend and shade past the queue's size exit at once.
+WP_FN void startPassQueues(WP_BUFFERS uint pathCount, uint maxPaths, bool appended) {
+  WP_BUFFER(counters)[WP_COUNTER_TOTAL_RAYS] = 0u;
+  WP_BUFFER(counters)[WP_COUNTER_TOTAL_SHADOW_RAYS] = 0u;
+  if (!appended) {
+    WP_BUFFER(counters)[rayQueue(0u, maxPaths).sizeWord] = pathCount;
   }
-  WP_BUFFER(counters)[rayQueue(0u, maxPaths).sizeWord] = pathCount;
   writeDispatchArguments(WP_BUFFERS_ARG WP_COUNTER_EXTEND_DISPATCH, pathCount);
   writeDispatchArguments(WP_BUFFERS_ARG WP_COUNTER_CONNECT_DISPATCH, 0u);
+}
+
+// Advance right after generate, when generate appended its camera rays: extend and shade of
+// bounce 0 sized to them rather than to every path of the pass (a work item costs even when
+// it exits at once: on lavapipe a workgroup of shade takes tens of microseconds).
+WP_FN void sizeFirstBounce(WP_BUFFERS uint maxPaths) {
+  writeDispatchArguments(WP_BUFFERS_ARG WP_COUNTER_EXTEND_DISPATCH, queueSize(WP_BUFFERS_ARG rayQueue(0u, maxPaths)));
+}
+
+// Accumulate, after the pass's last bounce: every queue empty for the next pass's generate,
+// which may append to bounce 0's from its first work item on (the backends' configure
+// empties them before the first pass). The totals stay for the host to read.
+WP_FN void finishPassQueues(WP_BUFFERS uint maxPaths) {
+  for (uint parity = 0u; parity < 2u; ++parity) {
+    resetQueue(WP_BUFFERS_ARG rayQueue(parity, maxPaths));
+    resetQueue(WP_BUFFERS_ARG shadowQueue(parity));
+  }
 }
 
 // Advance, after shade of `bounce`: adds the rays it traced and the shadow rays it spawned

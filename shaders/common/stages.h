@@ -44,7 +44,7 @@ WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   vec2 film = make_vec2(toFloat(pixel % width), toFloat(pixel / width)) + jitter.u;
   CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, lens.u);
   return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, lens.samples,
-                     0u);
+                     0u, 0u);
 }
 
 // The closest hit of `ray`, as shade reads it.
@@ -72,19 +72,37 @@ WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
 // written is a scalar store per lane).
 WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_BUFFER(pathRadiance)[slot], radiance); }
 
+// Whether adaptive sampling stopped the pixel of path slot `slot` of the pass `pc` (as of the
+// passes before it: accumulate of this pass decides for its own samples).
+WP_FN bool slotPixelStopped(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
+  uint pixels = params.pixelCount;
+  uint pixel = (pc.firstPixel + slot) % pixels;
+  return pixelStopped(WP_LOAD(accumulation, accumulationIndex(WP_LAYER_RADIANCE_SQUARES, pixel, pixels)));
+}
+
 // Generate, work item `slot`: the camera ray of that path slot into bounce 0's ray queue,
-// and the path's radiance cleared; the first work item also starts the pass's queues.
+// and the path's radiance cleared; the first work item also starts the pass's queues. With
+// adaptive sampling the rays of pixels that stopped are left out and the others appended,
+// so the queue holds only paths to trace (entry order does not matter: a path's results go
+// to its slot).
 WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
   uint pathCount = pc.pathCount;
   uint maxPaths = params.maxPaths;
+  bool adaptive = params.adaptiveThreshold > 0.0f;
   if (slot == 0u) {
-    startPassQueues(WP_BUFFERS_ARG pathCount, maxPaths);
+    startPassQueues(WP_BUFFERS_ARG pathCount, maxPaths, adaptive);
   }
   if (slot >= pathCount) {
     return;
   }
-  WP_BUFFER(rays)[queueEntry(rayQueue(0u, maxPaths), slot)] = cameraPathRay(params, pc, slot);
   WP_BUFFER(pathRadiance)[slot] = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
+  WorkQueue queue = rayQueue(0u, maxPaths);
+  if (!adaptive) {
+    WP_BUFFER(rays)[queueEntry(queue, slot)] = cameraPathRay(params, pc, slot);
+  } else if (!slotPixelStopped(WP_BUFFERS_ARG params, pc, slot)) {
+    uint entry = reserveQueueEntries(WP_BUFFERS_ARG queue, 1u);
+    WP_BUFFER(rays)[queueEntry(queue, entry)] = cameraPathRay(params, pc, slot);
+  }
 }
 
 // Extend, work item `i`: the closest hit of entry i of the bounce's ray queue, into hits[i].
@@ -105,6 +123,16 @@ WP_FN ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, u
   if (r.radiance.x != 0.0f || r.radiance.y != 0.0f || r.radiance.z != 0.0f) {
     addPathRadiance(WP_BUFFERS_ARG rayPathSlot(ray), r.radiance);
   }
+  if ((r.flags & WP_SHADE_FEATURES) != 0u) {
+    // Every path is shaded at bounce 0, which sets all its features; a later vertex that
+    // takes the albedo and normal keeps that depth.
+    uint slot = rayPathSlot(ray);
+    PathFeatures f = r.features;
+    if (rayBounce(ray) > 0u) {
+      f = withDepth(f, featureDepth(WP_BUFFER(pathFeatures)[slot]));
+    }
+    WP_BUFFER(pathFeatures)[slot] = f;
+  }
   return r;
 }
 
@@ -114,11 +142,16 @@ WP_FN WorkQueue continuationQueue(RenderParams params, PassConstants pc) {
 }
 
 // Advance, one work item: the queue sizes of `pc`'s bounce turned into the next stages'
-// dispatch arguments (advanceQueues), so the pass needs no readback.
+// dispatch arguments (advanceQueues), so the pass needs no readback; or, after generate
+// (WP_AFTER_GENERATE), bounce 0 sized to the camera rays generate appended.
 WP_FN void advanceStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
   // The dispatch is one workgroup; a single work item must do the read-modify-writes.
   if (i == 0u) {
-    advanceQueues(WP_BUFFERS_ARG pc.bounce, params.maxPaths);
+    if (pc.bounce == WP_AFTER_GENERATE) {
+      sizeFirstBounce(WP_BUFFERS_ARG params.maxPaths);
+    } else {
+      advanceQueues(WP_BUFFERS_ARG pc.bounce, params.maxPaths);
+    }
   }
 }
 
@@ -135,26 +168,50 @@ WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
   }
 }
 
-// Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance
-// and its square to the pixel's running sums (the squares give the per-pixel variance). It
-// walks the pixel's slots in sample order, so there are no races and the sum order is fixed.
+// Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance,
+// its square (which gives the per-pixel variance) and their feature passes to the pixel's
+// running sums (accumulation.h), and counts them. It walks the pixel's slots in sample
+// order, so there are no races and the sum order is fixed. With adaptive sampling it stops
+// the pixel when stopsSampling says so, and adds none of the pixel's later samples (those
+// this pass traced anyway are dropped), so a pixel's samples do not depend on the passes.
+// Its first work item also empties the queues for the next pass.
 WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
   uint pixels = params.pixelCount;
   uint pathCount = pc.pathCount;
+  if (t == 0u) {
+    finishPassQueues(WP_BUFFERS_ARG params.maxPaths);
+  }
   if (t >= min(pathCount, pixels)) {
     return;
   }
   uint pixel = (pc.firstPixel + t) % pixels;
-  vec4 sum = WP_LOAD(accumulation, pixel);
-  vec4 sumSquares = WP_LOAD(accumulation, pixels + pixel);
-  for (uint slot = t; slot < pathCount; slot += pixels) {
+  uint sumAt = accumulationIndex(WP_LAYER_RADIANCE, pixel, pixels);
+  uint squaresAt = accumulationIndex(WP_LAYER_RADIANCE_SQUARES, pixel, pixels);
+  uint albedoDepthAt = accumulationIndex(WP_LAYER_ALBEDO_DEPTH, pixel, pixels);
+  uint normalAt = accumulationIndex(WP_LAYER_NORMAL, pixel, pixels);
+  vec4 sum = WP_LOAD(accumulation, sumAt);
+  vec4 sumSquares = WP_LOAD(accumulation, squaresAt);
+  vec4 albedoDepth = WP_LOAD(accumulation, albedoDepthAt);
+  vec4 normal = WP_LOAD(accumulation, normalAt);
+  float threshold = params.adaptiveThreshold;
+  uint minSamples = params.adaptiveMinSamples;
+  for (uint slot = t; slot < pathCount && !pixelStopped(sumSquares); slot += pixels) {
     // Only the rgb is read: on lavapipe every component is a scalar load per lane.
     vec3 l = accumulableRadiance(WP_XYZ(WP_BUFFER(pathRadiance)[slot]));
     WP_ADD_XYZ(sum, l);
     WP_ADD_XYZ(sumSquares, l * l);
+    sum = withSampleCounted(sum);
+    PathFeatures f = WP_BUFFER(pathFeatures)[slot];
+    albedoDepth = albedoDepth + f.albedoDepth;
+    WP_ADD_XYZ(normal, featureNormal(f));
+    if (stopsSampling(sum, sumSquares, threshold, minSamples)) {
+      sumSquares = withPixelStopped(sumSquares);
+    }
   }
-  WP_BUFFER(accumulation)[pixel] = sum;
-  WP_BUFFER(accumulation)[pixels + pixel] = sumSquares;
+  WP_BUFFER(accumulation)[sumAt] = sum;
+  WP_BUFFER(accumulation)[squaresAt] = sumSquares;
+  WP_BUFFER(accumulation)[albedoDepthAt] = albedoDepth;
+  WP_BUFFER(accumulation)[normalAt] = normal;
 }
 
 WP_END

@@ -150,6 +150,13 @@ WP_FN CameraRay thinLensRay(ThinLens lens, vec2 film, uint width, uint height, v
   return ray;
 }
 
+// The depth of the point a camera ray in `direction` reaches after distance t: how far it
+// lies along the optical axis from the lens plane, where every camera ray starts (the
+// camera-space Z of the depth pass; a plane facing the camera has one depth everywhere).
+WP_FN float cameraDepth(ThinLens lens, vec3 direction, float t) {
+  return t * dot(direction, make_vec3(lens.forward.x, lens.forward.y, lens.forward.z));
+}
+
 // thinLensRay from a uniformly sampled point of the aperture.
 WP_FN CameraRay sampleThinLensRay(ThinLens lens, vec2 film, uint width, uint height, vec2 u) {
   return thinLensRay(lens, film, width, height, sampleAperture(lens, u));

@@ -47,6 +47,8 @@ std::optional<int> parseCommandLine(CommandLine& line, int argc, const char* con
     return line.app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return line.app.exit(e);
+  } catch (const CLI::Success&) {
+    return 0;  // a flag did all that was asked (--passes list)
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "wavepath: error: %s; run 'wavepath --help' for usage\n", e.what());
     return 2;

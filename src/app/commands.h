@@ -12,6 +12,7 @@
 #include "app/pose_uploader.h"
 #include "app/resumable_render.h"
 #include "bvh/gpu_scene.h"
+#include "image/feature_passes.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
@@ -45,6 +46,7 @@ struct RenderOptions {
   std::string samples;  // --samples A..B: render only these samples of --spp (a batch of a split frame)
   std::string region;   // --region X0,Y0,X1,Y1: render only this crop
   CheckpointOptions checkpoint;
+  PassSelection passes;  // --passes: the feature passes an EXR holds
 };
 
 // Adds `render` to the app; the options are filled in when it parses.

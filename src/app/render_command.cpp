@@ -147,8 +147,18 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   }
   RadianceImage image = renderer.image();
   checkValidation(choice);
+  if (!image.sampleCount.empty()) {
+    double samples = 0.0;
+    for (float n : image.sampleCount) samples += n;
+    char text[160];
+    std::snprintf(text, sizeof(text), "adaptive sampling: %.1f samples per pixel on average, of at most %u (%.0f%%)",
+                  samples / double(image.sampleCount.size()), o.settings.samplesInRange(),
+                  100.0 * samples / double(image.sampleCount.size()) / o.settings.samplesInRange());
+    note(text);
+  }
   const DisplaySettings display = displaySettings(o.camera, scene.camera.optics, image);
   image.record = renderRecord(o.settings, here.identity, display, o.camera.autoExposure);
+  keepSelectedPasses(image, o.passes);
   writeImage(output, image, display);
   noteIfAlmostBlack(image, display, scene, output);
   if (!o.checkpoint.path.empty()) std::filesystem::remove(o.checkpoint.path);
@@ -218,6 +228,27 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
           },
           "SECONDS"))
       ->needs(checkpoint);
+  CLI::Option* adaptive =
+      cmd->add_option("--adaptive", o.settings.adaptiveThreshold,
+                      "Adaptive sampling: from --adaptive-min-samples on, a pixel whose estimated relative error is "
+                      "below THRESHOLD (e.g. 0.01) receives no more samples; --spp is the most a pixel gets")
+          ->check(CLI::Range(1e-6f, 1.0f));
+  cmd->add_option("--adaptive-min-samples", o.settings.adaptiveMinSamples,
+                  "Samples every pixel gets before adaptive sampling may stop it (default 16)")
+      ->check(CLI::Range(2u, 1u << 20))
+      ->needs(adaptive);
+  cmd->add_option_function<std::string>(
+         "--passes",
+         [&o](const std::string& text) {
+           if (text == "list") {
+             std::fputs(passListText().c_str(), stdout);
+             throw CLI::Success();
+           }
+           o.passes = parsePasses(text);
+         },
+         "Feature passes the EXR holds besides the radiance, for denoisers: a comma-separated list of albedo, "
+         "normal, depth, or all (the default), none; 'list' prints what each holds")
+      ->check(parsedBy([](const std::string& text) { if (text != "list") parsePasses(text); }, "LIST"));
   cmd->add_flag("--resume", o.checkpoint.resume,
                 "Go on from the --checkpoint FILE of an interrupted render (same scene and flags)")
       ->needs(checkpoint);

@@ -42,11 +42,13 @@ fs::path directoryOf(const fs::path& path) { return path.has_parent_path() ? pat
 
 void checkImageShape(const fs::path& path, const RadianceImage& image) {
   size_t pixels = size_t(image.width) * image.height;
-  if (image.width == 0 || image.height == 0 || image.mean.size() != pixels ||
-      (!image.variance.empty() && image.variance.size() != pixels))
+  auto fits = [pixels](size_t size) { return size == 0 || size == pixels; };
+  if (image.width == 0 || image.height == 0 || image.mean.size() != pixels || !fits(image.variance.size()) ||
+      !fits(image.albedo.size()) || !fits(image.normal.size()) || !fits(image.depth.size()) ||
+      !fits(image.sampleCount.size()))
     failWrite(path, "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) + " but has " +
                         std::to_string(image.mean.size()) + " means and " + std::to_string(image.variance.size()) +
-                        " variances (a bug in the caller)");
+                        " variances, or passes of other sizes (a bug in the caller)");
   if (image.width > uint32_t(std::numeric_limits<int>::max() / 4) ||
       image.height > uint32_t(std::numeric_limits<int>::max()))
     failWrite(path, "image is too large for the PNG and EXR writers; render fewer pixels");
@@ -91,24 +93,43 @@ std::string takeExrMessage(const char* err) {
   return message;
 }
 
-std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& image) {
-  // OpenEXR wants channels sorted by name; planar float arrays in that order.
-  const char* names[] = {"B", "G", "R", "variance.B", "variance.G", "variance.R"};
-  const int sources[] = {2, 1, 0, 2, 1, 0};
-  int channelCount = image.variance.empty() ? 3 : 6;
-  size_t pixels = image.mean.size();
-  std::vector<std::vector<float>> planes(channelCount, std::vector<float>(pixels));
-  for (int c = 0; c < channelCount; ++c) {
-    const std::vector<glm::vec3>& from = c < 3 ? image.mean : image.variance;
-    for (size_t i = 0; i < pixels; ++i) planes[c][i] = from[i][sources[c]];
+// The EXR channels of an image: each a name and a plane of floats.
+struct ExrPlane {
+  std::string name;
+  std::vector<float> values;
+};
+
+// The planes of `pass` (one vec3 per pixel; none when empty), named layer.<channel name>.
+void addPlanes(std::vector<ExrPlane>& planes, const std::string& layer, const char* const names[3],
+               const std::vector<glm::vec3>& pass) {
+  for (int c = 0; c < 3 && !pass.empty(); ++c) {
+    ExrPlane plane{layer.empty() ? names[c] : layer + "." + names[c], std::vector<float>(pass.size())};
+    for (size_t i = 0; i < pass.size(); ++i) plane.values[i] = pass[i][c];
+    planes.push_back(std::move(plane));
   }
+}
+
+const char* const kColourChannels[3] = {"R", "G", "B"};
+const char* const kVectorChannels[3] = {"X", "Y", "Z"};
+
+std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& image) {
+  std::vector<ExrPlane> planes;
+  addPlanes(planes, "", kColourChannels, image.mean);
+  addPlanes(planes, "variance", kColourChannels, image.variance);
+  addPlanes(planes, "albedo", kColourChannels, image.albedo);
+  addPlanes(planes, "normal", kVectorChannels, image.normal);
+  if (!image.depth.empty()) planes.push_back({"depth.Z", image.depth});
+  if (!image.sampleCount.empty()) planes.push_back({"samples.X", image.sampleCount});
+  // OpenEXR wants channels sorted by name.
+  std::sort(planes.begin(), planes.end(), [](const ExrPlane& a, const ExrPlane& b) { return a.name < b.name; });
+  const int channelCount = int(planes.size());
   std::vector<unsigned char*> planePointers(channelCount);
   std::vector<EXRChannelInfo> channels(channelCount);
   std::vector<int> pixelTypes(channelCount, TINYEXR_PIXELTYPE_FLOAT);
   for (int c = 0; c < channelCount; ++c) {
-    planePointers[c] = reinterpret_cast<unsigned char*>(planes[c].data());
+    planePointers[c] = reinterpret_cast<unsigned char*>(planes[c].values.data());
     std::memset(&channels[c], 0, sizeof(EXRChannelInfo));
-    std::strncpy(channels[c].name, names[c], sizeof(channels[c].name) - 1);
+    std::strncpy(channels[c].name, planes[c].name.c_str(), sizeof(channels[c].name) - 1);
   }
 
   std::vector<HeaderAttribute> attributes;
@@ -247,20 +268,27 @@ RadianceImage readExr(const fs::path& path) {
     // chunk (found by fuzz_exr): PIZ files are not given to it.
     failRead(path, "it is PIZ-compressed, which wavepath does not read; save it with ZIP compression or none");
   }
-  const char* names[] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-  int index[6];
-  for (int c = 0; c < 6; ++c) index[c] = findChannel(exr.header, names[c]);
+  // The channels read: radiance, then the optional variance and feature passes, each read
+  // only when all its channels are there.
+  const char* names[] = {"R", "G", "B", "variance.R", "variance.G", "variance.B", "albedo.R", "albedo.G",
+                         "albedo.B", "normal.X", "normal.Y", "normal.Z", "depth.Z", "samples.X"};
+  constexpr int kChannels = int(sizeof(names) / sizeof(names[0]));
+  int index[kChannels];
+  for (int c = 0; c < kChannels; ++c) index[c] = findChannel(exr.header, names[c]);
   if (index[0] < 0 || index[1] < 0 || index[2] < 0)
     failRead(path, "it has no R, G and B channels; save the radiance as RGB");
-  bool hasVariance = index[3] >= 0 && index[4] >= 0 && index[5] >= 0;
+  auto hasAll = [&](int first, int count) {
+    for (int c = first; c < first + count; ++c)
+      if (index[c] < 0) return false;
+    return true;
+  };
   for (int c = 0; c < exr.header.num_channels; ++c) {
     if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
       exr.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
   }
-  for (int c = 0; c < (hasVariance ? 6 : 3); ++c) {
-    if (exr.header.pixel_types[index[c]] == TINYEXR_PIXELTYPE_UINT)
-      failRead(path,
-               std::string("channel ") + names[c] + " holds integers, not radiance; save it as half or float");
+  for (int c = 0; c < kChannels; ++c) {
+    if (index[c] >= 0 && exr.header.pixel_types[index[c]] == TINYEXR_PIXELTYPE_UINT)
+      failRead(path, std::string("channel ") + names[c] + " holds integers, not floats; save it as half or float");
   }
   // tinyexr (1.0.1) sets the image's channel count only once decoding succeeds, but on a
   // failure frees the image by it (DecodeEXRImage: FreeEXRImage): set beforehand, every plane
@@ -285,13 +313,17 @@ RadianceImage readExr(const fs::path& path) {
   result.height = uint32_t(exr.image.height);
   size_t pixels = size_t(result.width) * result.height;
   auto channel = [&](int c) { return reinterpret_cast<const float*>(exr.image.images[index[c]]); };
-  result.mean.resize(pixels);
-  for (size_t i = 0; i < pixels; ++i) result.mean[i] = glm::vec3(channel(0)[i], channel(1)[i], channel(2)[i]);
-  if (hasVariance) {
-    result.variance.resize(pixels);
-    for (size_t i = 0; i < pixels; ++i)
-      result.variance[i] = glm::vec3(channel(3)[i], channel(4)[i], channel(5)[i]);
-  }
+  auto readVectors = [&](int first, std::vector<glm::vec3>& to) {
+    if (!hasAll(first, 3)) return;
+    to.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) to[i] = glm::vec3(channel(first)[i], channel(first + 1)[i], channel(first + 2)[i]);
+  };
+  readVectors(0, result.mean);
+  readVectors(3, result.variance);
+  readVectors(6, result.albedo);
+  readVectors(9, result.normal);
+  if (hasAll(12, 1)) result.depth.assign(channel(12), channel(12) + pixels);
+  if (hasAll(13, 1)) result.sampleCount.assign(channel(13), channel(13) + pixels);
   return result;
 }
 

@@ -18,6 +18,14 @@ struct RadianceImage {
   uint32_t width = 0, height = 0;
   std::vector<glm::vec3> mean;
   std::vector<glm::vec3> variance;
+  // The feature passes, each a mean over the pixel's samples (docs/production.md): empty,
+  // or one entry per pixel. Written to EXR as albedo.R/G/B, normal.X/Y/Z and depth.Z.
+  std::vector<glm::vec3> albedo;
+  std::vector<glm::vec3> normal;
+  std::vector<float> depth;
+  // The samples each pixel holds, when they differ between pixels (adaptive sampling); empty
+  // when every pixel holds those its record says. Written to EXR as samples.X.
+  std::vector<float> sampleCount;
   // What the image holds of which frame (samples, region, scene), when a render made it.
   std::optional<RenderRecord> record;
 };
@@ -39,7 +47,7 @@ void checkOutputPath(const std::filesystem::path& path);
 
 // Writes `image` to `path`, chosen by extension: .png is 8-bit, made for display as `display`
 // says (by default clamped to [0, 1] and sRGB-encoded), .exr is 32-bit float linear R, G, B
-// plus variance.R/G/B when variance is present, with image.record in its header (EXR
+// plus variance.R/G/B and the feature passes that are present, with image.record in its header (EXR
 // only). The file appears whole or not at all
 // (written beside it, then renamed). Throws wp::Error on failure.
 void writeImage(const std::filesystem::path& path, const RadianceImage& image, const DisplaySettings& display = {});
@@ -47,7 +55,7 @@ void writeImage(const std::filesystem::path& path, const RadianceImage& image, c
 // The most pixels an image reader accepts: the largest image wavepath renders.
 inline constexpr uint64_t kMaxImagePixels = 16384ull * 16384ull;
 
-// Reads R, G, B (and variance.R/G/B and the render record when present) of a scanline EXR
+// Reads R, G, B (and variance.R/G/B, the feature passes and the render record when present) of a scanline EXR
 // as float. Throws wp::Error when the file is not a regular file, cannot be read, is
 // damaged, lacks R, G or B, or declares more than kMaxImagePixels pixels or more than its
 // bytes can hold (checked before the pixels are allocated).

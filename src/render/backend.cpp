@@ -23,14 +23,32 @@ std::array<SceneArray, kSceneBindings.size()> sceneArrays(const GpuScene& s) {
 #undef WP_SCENE_ARRAY
 }
 
+Accumulation Accumulation::zeros(uint64_t pixels) {
+  Accumulation a;
+  for (std::vector<glm::vec4>* layer : a.layers()) layer->assign(pixels, glm::vec4(0.0f));
+  return a;
+}
+
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels) {
-  if (accumulation.sum.size() != pixels || accumulation.sumSquares.size() != pixels) {
-    throw Error("internal: an accumulation of " + std::to_string(accumulation.sum.size()) + " pixels for an image of " +
-                std::to_string(pixels));
+  std::vector<glm::vec4> buffer;
+  buffer.reserve(size_t(pixels) * WP_ACCUMULATION_LAYERS);
+  for (const std::vector<glm::vec4>* layer : accumulation.layers()) {
+    if (layer->size() != pixels)
+      throw Error("internal: an accumulation layer of " + std::to_string(layer->size()) + " pixels for an image of " +
+                  std::to_string(pixels));
+    buffer.insert(buffer.end(), layer->begin(), layer->end());
   }
-  std::vector<glm::vec4> both(accumulation.sum);
-  both.insert(both.end(), accumulation.sumSquares.begin(), accumulation.sumSquares.end());
-  return both;
+  return buffer;
+}
+
+Accumulation accumulationOfBuffer(const std::vector<glm::vec4>& buffer, uint32_t pixels) {
+  Accumulation result;
+  auto at = buffer.begin();
+  for (std::vector<glm::vec4>* layer : result.layers()) {
+    layer->assign(at, at + pixels);
+    at += pixels;
+  }
+  return result;
 }
 
 const char* kernelName(Kernel kernel) {

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "shaders/common/accumulation.h"
 #include "shaders/common/binding_table.h"
 
 namespace wp {
@@ -92,23 +93,37 @@ struct PassResult {
   std::array<double, kKernelCount> kernelMs{};  // GPU time per kernel; zeros if unsupported
 };
 
-// Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray and its
-// radiance.
-inline constexpr uint64_t kBytesPerPath =
-    2 * sizeof(gpu::PathRay) + sizeof(gpu::HitRecord) + sizeof(gpu::ShadowRay) + sizeof(glm::vec4);
-// Device memory a pixel of the accumulation takes: its sum and its sum of squares.
-inline constexpr uint64_t kAccumulationBytesPerPixel = 2 * sizeof(glm::vec4);
+// Device memory a path in flight takes: two ray-queue entries, a hit, a shadow ray, its
+// radiance and its feature passes.
+inline constexpr uint64_t kBytesPerPath = 2 * sizeof(gpu::PathRay) + sizeof(gpu::HitRecord) +
+                                          sizeof(gpu::ShadowRay) + sizeof(glm::vec4) + sizeof(gpu::PathFeatures);
+// Device memory a pixel of the accumulation takes: a vec4 per layer (accumulation.h).
+inline constexpr uint64_t kAccumulationBytesPerPixel = WP_ACCUMULATION_LAYERS * sizeof(glm::vec4);
 
-// Running per-pixel sums of radiance and of its square over all samples so far.
+// Running per-pixel sums over all samples so far, the layers of the accumulation buffer
+// (shaders/common/accumulation.h), one entry per pixel each.
 struct Accumulation {
-  std::vector<glm::vec4> sum;
-  std::vector<glm::vec4> sumSquares;
+  std::vector<glm::vec4> sum;          // WP_LAYER_RADIANCE
+  std::vector<glm::vec4> sumSquares;   // WP_LAYER_RADIANCE_SQUARES
+  std::vector<glm::vec4> albedoDepth;  // WP_LAYER_ALBEDO_DEPTH
+  std::vector<glm::vec4> normal;       // WP_LAYER_NORMAL
+
+  // The layers in the buffer's order (layer WP_LAYER_* is entry WP_LAYER_*).
+  std::array<std::vector<glm::vec4>*, WP_ACCUMULATION_LAYERS> layers() {
+    return {&sum, &sumSquares, &albedoDepth, &normal};
+  }
+  std::array<const std::vector<glm::vec4>*, WP_ACCUMULATION_LAYERS> layers() const {
+    return {&sum, &sumSquares, &albedoDepth, &normal};
+  }
+  // Every layer `pixels` entries of zeros.
+  static Accumulation zeros(uint64_t pixels);
 };
 
-// The accumulation buffer's contents for `accumulation` (Binding::accumulation: the sums of
-// every pixel, then the sums of squares); throws wp::Error when the arrays do not hold
-// `pixels` entries each.
+// The accumulation buffer's contents for `accumulation` (Binding::accumulation: its layers
+// one after another); throws wp::Error when a layer does not hold `pixels` entries.
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels);
+// The accumulation the buffer's contents `buffer` hold, for `pixels` pixels.
+Accumulation accumulationOfBuffer(const std::vector<glm::vec4>& buffer, uint32_t pixels);
 
 class Backend {
 public:

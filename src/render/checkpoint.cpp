@@ -21,13 +21,34 @@ static_assert(std::endian::native == std::endian::little, "checkpoints store lit
 
 constexpr char kMagic[] = "wavepath checkpoint";
 constexpr size_t kChecksumBytes = 8;
-const char* const kLayerNames[] = {"radiance.sum", "radiance.sumSquares"};
+// A layer of the file: `components` floats per pixel from `first` on of an accumulation layer.
+struct FileLayer {
+  const char* name;
+  uint32_t accumulationLayer;  // WP_LAYER_*
+  uint32_t first;
+  uint32_t components;
+  const char* type;
+};
+constexpr FileLayer kFileLayers[] = {
+    {"radiance.sum", WP_LAYER_RADIANCE, 0, 3, "f32x3"},
+    {"radiance.sumSquares", WP_LAYER_RADIANCE_SQUARES, 0, 3, "f32x3"},
+    {"albedo.sum", WP_LAYER_ALBEDO_DEPTH, 0, 3, "f32x3"},
+    {"depth.sum", WP_LAYER_ALBEDO_DEPTH, 3, 1, "f32"},
+    {"normal.sum", WP_LAYER_NORMAL, 0, 3, "f32x3"},
+    {"samples", WP_LAYER_RADIANCE, 3, 1, "f32"},
+    {"stopped", WP_LAYER_RADIANCE_SQUARES, 3, 1, "f32"},
+};
+constexpr size_t kFileLayerCount = sizeof(kFileLayers) / sizeof(kFileLayers[0]);
+constexpr uint64_t kBytesPerPixel = [] {
+  uint64_t bytes = 0;
+  for (const FileLayer& layer : kFileLayers) bytes += layer.components * sizeof(float);
+  return bytes;
+}();
 
-std::vector<glm::vec4>& layerOf(Accumulation& accumulation, int layer) {
-  return layer == 0 ? accumulation.sum : accumulation.sumSquares;
-}
-const std::vector<glm::vec4>& layerOf(const Accumulation& accumulation, int layer) {
-  return layer == 0 ? accumulation.sum : accumulation.sumSquares;
+std::string layerNames() {
+  std::string names;
+  for (const FileLayer& layer : kFileLayers) names += (names.empty() ? "" : ", ") + std::string(layer.name);
+  return names;
 }
 
 [[noreturn]] void failRead(const std::filesystem::path& path, const std::string& reason) {
@@ -43,17 +64,17 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& c) {
          << c.identity.settings << "\nspp " << c.samplesPerPixel << "\nsamples " << c.firstSample << " "
          << c.endSample << "\nregion " << c.region.x0 << " " << c.region.y0 << " " << c.region.x1 << " "
          << c.region.y1 << "\npaths-done " << c.pathsDone << "\ndevice " << c.device << "\n";
-  for (const char* name : kLayerNames) header << "layer " << name << " f32x3 " << pixels << "\n";
+  for (const FileLayer& layer : kFileLayers) header << "layer " << layer.name << " " << layer.type << " " << pixels << "\n";
   header << "end\n";
   const std::string text = header.str();
   std::vector<unsigned char> bytes(text.begin(), text.end());
-  for (int layer = 0; layer < 2; ++layer) {
-    const std::vector<glm::vec4>& values = layerOf(c.accumulation, layer);
+  for (const FileLayer& layer : kFileLayers) {
+    const std::vector<glm::vec4>& values = *c.accumulation.layers()[layer.accumulationLayer];
     if (values.size() != pixels) throw Error("internal: a checkpoint layer of " + std::to_string(values.size()) +
                                              " pixels for a region of " + std::to_string(pixels));
-    const size_t at = bytes.size();
-    bytes.resize(at + pixels * 3 * sizeof(float));
-    for (uint64_t i = 0; i < pixels; ++i) std::memcpy(&bytes[at + i * 12], &values[i], 12);
+    const size_t at = bytes.size(), stride = layer.components * sizeof(float);
+    bytes.resize(at + pixels * stride);
+    for (uint64_t i = 0; i < pixels; ++i) std::memcpy(&bytes[at + i * stride], &values[i][int(layer.first)], stride);
   }
   const uint64_t checksum = XXH3_64bits(bytes.data(), bytes.size());
   const size_t at = bytes.size();
@@ -92,7 +113,7 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
   std::istringstream header(all.substr(magicLine.size(), end + 1 - magicLine.size()));
   Checkpoint c;
   int format = 0;
-  std::vector<std::string> layers;
+  std::vector<std::string> layers, layerTypes;
   std::vector<uint64_t> layerSizes;
   std::string line;
   auto damaged = [&](const std::string& what) { failRead(path, "its " + what + " line is damaged"); };
@@ -122,8 +143,9 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
     } else if (key == "layer") {
       std::string name, type;
       uint64_t count = 0;
-      if (!(v >> name >> type >> count) || type != "f32x3") damaged(key);
+      if (!(v >> name >> type >> count)) damaged(key);
       layers.push_back(name);
+      layerTypes.push_back(type);
       layerSizes.push_back(count);
     } else {
       failRead(path, "its header has an unknown line '" + key + "' (damaged, or from a newer wavepath)");
@@ -134,20 +156,26 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
       c.endSample > c.samplesPerPixel)
     failRead(path, "its header is inconsistent (region or samples); start afresh without --resume");
   const uint64_t pixels = c.region.pixels();
-  if (c.region.x1 > (1u << 16) || c.region.y1 > (1u << 16) || pixels * 24 > all.size())
+  if (c.region.x1 > (1u << 16) || c.region.y1 > (1u << 16) || pixels * kBytesPerPixel > all.size())
     failRead(path, "its region is larger than its layers (truncated or damaged)");
   if (c.pathsDone < pixels * c.firstSample || c.pathsDone > pixels * c.endSample)
     failRead(path, "its paths-done is outside its samples (damaged)");
-  if (layers.size() != 2 || layers[0] != kLayerNames[0] || layers[1] != kLayerNames[1])
-    failRead(path, "it holds other layers than radiance.sum and radiance.sumSquares (from a newer wavepath?)");
+  bool sameLayers = layers.size() == kFileLayerCount;
+  for (size_t l = 0; sameLayers && l < kFileLayerCount; ++l)
+    sameLayers = layers[l] == kFileLayers[l].name && layerTypes[l] == kFileLayers[l].type;
+  if (!sameLayers)
+    failRead(path, "it holds other layers than " + layerNames() +
+                       " (from another version of wavepath); start afresh without --resume");
+  c.accumulation = Accumulation::zeros(pixels);
   size_t at = end + 5;
-  for (int layer = 0; layer < 2; ++layer) {
-    if (layerSizes[layer] != pixels || all.size() - at < pixels * 12)
-      failRead(path, "layer " + layers[layer] + " does not hold one value per pixel of its region (damaged)");
-    std::vector<glm::vec4>& values = layerOf(c.accumulation, layer);
-    values.assign(pixels, glm::vec4(0.0f));
-    for (uint64_t i = 0; i < pixels; ++i) std::memcpy(&values[i], &all[at + i * 12], 12);
-    at += pixels * 12;
+  for (size_t l = 0; l < kFileLayerCount; ++l) {
+    const FileLayer& layer = kFileLayers[l];
+    const size_t stride = layer.components * sizeof(float);
+    if (layerSizes[l] != pixels || all.size() - at < pixels * stride)
+      failRead(path, "layer " + layers[l] + " does not hold one value per pixel of its region (damaged)");
+    std::vector<glm::vec4>& values = *c.accumulation.layers()[layer.accumulationLayer];
+    for (uint64_t i = 0; i < pixels; ++i) std::memcpy(&values[i][int(layer.first)], &all[at + i * stride], stride);
+    at += pixels * stride;
   }
   if (at != all.size()) failRead(path, "it has bytes after its layers (damaged)");
   return c;

@@ -28,9 +28,10 @@ struct Checkpoint {
 // Writes `checkpoint` to `path` atomically (the file is the previous checkpoint or this one,
 // whole, even after a crash). Format: a text header of "key value" lines (wavepath
 // checkpoint, format, scene-hash, settings, spp, samples, region, paths-done, device, one
-// "layer NAME f32x3 COUNT" line per layer, end), the layers' little-endian floats in the
-// order listed (radiance.sum, radiance.sumSquares), then the XXH3-64 of everything before
-// it (8 bytes, little-endian). New per-pixel layers join as more layer lines.
+// "layer NAME TYPE COUNT" line per layer, end), the layers' little-endian floats in the
+// order listed (radiance.sum, radiance.sumSquares, albedo.sum, depth.sum, normal.sum,
+// samples, stopped; TYPE f32x3 or f32), then the XXH3-64 of everything before it (8 bytes, little-endian). New
+// per-pixel layers join as more layer lines.
 void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& checkpoint);
 
 // Reads a checkpoint; throws a one-line wp::Error naming the file when it is missing, not a

@@ -22,6 +22,7 @@ static_assert(sizeof(RenderParams) == 208);
 static_assert(sizeof(PathRay) == 64);
 static_assert(sizeof(HitRecord) == 16);
 static_assert(sizeof(ShadowRay) == 48);
+static_assert(sizeof(PathFeatures) == 32);
 static_assert(sizeof(QueueCounters) == WP_COUNTER_WORDS * 4);
 static_assert(offsetof(QueueCounters, extendDispatch) == WP_COUNTER_EXTEND_DISPATCH * 4);
 static_assert(offsetof(QueueCounters, connectDispatch) == WP_COUNTER_CONNECT_DISPATCH * 4);
@@ -32,7 +33,7 @@ static_assert(offsetof(RenderParams, maxBounces) == 128);
 static_assert(offsetof(RenderParams, planeCount) == 144);
 static_assert(offsetof(RenderParams, bsdfFlags) == 160);
 static_assert(offsetof(RenderParams, regionX) == 176);
-static_assert(offsetof(RenderParams, samplerKind) == 192);
+static_assert(offsetof(RenderParams, samplerKind) == 200);
 static_assert(offsetof(GpuEnvironment, width) == 16);
 
 // The binding table: each row's stride is its element's size in 16-byte texels (what the

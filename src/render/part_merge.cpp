@@ -18,6 +18,18 @@ std::string regionText(const RenderRecord& r) {
   return std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) + "," + std::to_string(r.y1);
 }
 
+// The feature passes an image holds, for messages: "albedo, normal, depth" or "none".
+std::string passesOf(const RadianceImage& image) {
+  std::string names;
+  auto add = [&](bool present, const char* name) {
+    if (present) names += (names.empty() ? "" : ", ") + std::string(name);
+  };
+  add(!image.albedo.empty(), "albedo");
+  add(!image.normal.empty(), "normal");
+  add(!image.depth.empty(), "depth");
+  return names.empty() ? "none" : names;
+}
+
 // Throws unless `part` is a well-formed piece of the frame `first` belongs to.
 void checkPart(const FramePart& part, const FramePart& first) {
   if (!part.image.record)
@@ -39,6 +51,14 @@ void checkPart(const FramePart& part, const FramePart& first) {
   if (r.samplesPerPixel != f.samplesPerPixel)
     throw mismatch("--spp is " + std::to_string(r.samplesPerPixel) + " there, " +
                    std::to_string(f.samplesPerPixel) + " here");
+  const size_t pixels = part.image.mean.size();
+  auto fits = [pixels](size_t size) { return size == 0 || size == pixels; };
+  if (!fits(part.image.albedo.size()) || !fits(part.image.normal.size()) || !fits(part.image.depth.size()) ||
+      !fits(part.image.sampleCount.size()))
+    throw Error("'" + part.name + "' has feature passes of another size than its image; render the part again");
+  if (passesOf(part.image) != passesOf(first.image))
+    throw mismatch("it holds the feature passes " + passesOf(part.image) + ", '" + first.name + "' " +
+                   passesOf(first.image) + "; render the parts with the same --passes");
   std::string difference = identityDifference({r.sceneHash, r.settings}, {f.sceneHash, f.settings});
   if (!difference.empty()) throw mismatch(difference);
 }
@@ -76,6 +96,12 @@ RadianceImage mergeParts(const std::vector<FramePart>& parts) {
   const size_t pixels = size_t(merged.width) * merged.height;
   merged.mean.assign(pixels, glm::vec3(0.0f));
   merged.variance.assign(pixels, glm::vec3(0.0f));
+  const RadianceImage& firstImage = parts.front().image;
+  if (!firstImage.albedo.empty()) merged.albedo.assign(pixels, glm::vec3(0.0f));
+  if (!firstImage.normal.empty()) merged.normal.assign(pixels, glm::vec3(0.0f));
+  if (!firstImage.depth.empty()) merged.depth.assign(pixels, 0.0f);
+  if (std::any_of(parts.begin(), parts.end(), [](const FramePart& p) { return !p.image.sampleCount.empty(); }))
+    merged.sampleCount.assign(pixels, 0.0f);
   std::vector<const FramePart*> holding;
   for (uint32_t y = 0; y < merged.height; ++y) {
     for (uint32_t x = 0; x < merged.width; ++x) {
@@ -92,22 +118,46 @@ RadianceImage mergeParts(const std::vector<FramePart>& parts) {
         throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") has " + std::to_string(samples) +
                     " of its " + std::to_string(frame.samplesPerPixel) +
                     " samples in these parts; add the parts that hold the rest");
-      const double n = double(samples);
+      // The samples each part holds of the pixel: those of its range, or fewer where adaptive
+      // sampling stopped the pixel early (its samples.X).
+      auto indexIn = [x, y](const FramePart* part) {
+        const RenderRecord& r = *part->image.record;
+        return (y - r.y0) * part->image.width + (x - r.x0);
+      };
+      auto held = [&](const FramePart* part) {
+        return part->image.sampleCount.empty() ? double(part->image.record->sampleCount())
+                                               : double(part->image.sampleCount[indexIn(part)]);
+      };
+      double n = 0.0;
       glm::dvec3 sum(0.0);
       for (const FramePart* part : holding) {
-        const RenderRecord& r = *part->image.record;
-        sum += double(r.sampleCount()) * glm::dvec3(part->image.mean[(y - r.y0) * part->image.width + (x - r.x0)]);
+        n += held(part);
+        sum += held(part) * glm::dvec3(part->image.mean[indexIn(part)]);
       }
+      n = std::max(n, 1.0);
       const glm::dvec3 mean = sum / n;
+      const size_t out = size_t(y) * merged.width + x;
+      // The feature passes: means over all samples, each part's weighted by its samples.
+      glm::dvec3 albedo(0.0), normal(0.0);
+      double depth = 0.0;
+      for (const FramePart* part : holding) {
+        const size_t i = indexIn(part);
+        const double k = held(part) / n;
+        if (!merged.albedo.empty()) albedo += k * glm::dvec3(part->image.albedo[i]);
+        if (!merged.normal.empty()) normal += k * glm::dvec3(part->image.normal[i]);
+        if (!merged.depth.empty()) depth += k * double(part->image.depth[i]);
+      }
+      if (!merged.albedo.empty()) merged.albedo[out] = glm::vec3(albedo);
+      if (!merged.normal.empty()) merged.normal[out] = glm::vec3(normal);
+      if (!merged.depth.empty()) merged.depth[out] = float(depth);
+      if (!merged.sampleCount.empty()) merged.sampleCount[out] = float(n);
       glm::dvec3 m2(0.0);
       for (const FramePart* part : holding) {
-        const RenderRecord& r = *part->image.record;
-        const size_t i = (y - r.y0) * part->image.width + (x - r.x0);
-        const double k = double(r.sampleCount());
+        const size_t i = indexIn(part);
+        const double k = held(part);
         const glm::dvec3 deviation = glm::dvec3(part->image.mean[i]) - mean;
         m2 += glm::dvec3(part->image.variance[i]) * (k * (k - 1.0)) + k * deviation * deviation;
       }
-      const size_t out = size_t(y) * merged.width + x;
       merged.mean[out] = glm::vec3(mean);
       merged.variance[out] = n > 1.0 ? glm::vec3(m2 / (n * (n - 1.0))) : glm::vec3(0.0f);
     }

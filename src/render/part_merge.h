@@ -21,7 +21,8 @@ struct FramePart {
 // sample of every pixel; otherwise throws a one-line wp::Error naming the parts.
 //
 // Per pixel, the parts holding it are combined in sample order: the mean is
-// sum_k n_k m_k / N (in double, n_k the part's samples, m_k its mean), and the variance of
+// sum_k n_k m_k / N (in double, n_k the part's samples of the pixel: its sample range, or its
+// samples.X where adaptive sampling stopped the pixel early; m_k its mean), and the variance of
 // that mean comes from the parts' sample variances s_k^2 = n_k v_k by Chan et al.'s
 // pairwise formula, M2 = sum_k (n_k - 1) s_k^2 + sum_k n_k (m_k - mean)^2, v = M2 / (N (N - 1)).
 // A pixel held by one part (regions) keeps its values bit for bit.

@@ -19,13 +19,16 @@ std::string settingsFlags(const RenderSettings& s) {
   const char* mode = s.mode == IntegratorMode::Mis ? "mis" : s.mode == IntegratorMode::NeeOnly ? "nee" : "bsdf";
   char clamp[32];
   std::snprintf(clamp, sizeof(clamp), "%.9g", double(s.contributionClamp));
+  char adaptive[32];
+  std::snprintf(adaptive, sizeof(adaptive), "%.9g", double(s.adaptiveThreshold));
   std::string flags = "--width " + std::to_string(s.width) + " --height " + std::to_string(s.height) +
                       " --max-depth " + std::to_string(s.maxBounces) + " --seed " + std::to_string(s.seed) +
                       " --sampler " + (s.sampler == SamplerKind::Sobol ? "sobol" : "independent") +
                       " --mode " + mode + " --rr-start " + std::to_string(s.russianRouletteStart) +
                       " --light-selection " +
                       (s.lightSelection == LightSelection::Power ? "power" : "solid-angle") + " --clamp " + clamp +
-                      " --sky-sampling " + (s.skySampling ? "on" : "off") + " --widen-roughness " +
+                      " --sky-sampling " + (s.skySampling ? "on" : "off") + " --adaptive " + adaptive +
+                      " --adaptive-min-samples " + std::to_string(s.adaptiveMinSamples) + " --widen-roughness " +
                       (s.widenRoughness ? "on" : "off") + " --fixed-lobe-choice " +
                       (s.fixedLobeChoice ? "on" : "off");
   return flags;

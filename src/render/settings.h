@@ -62,6 +62,11 @@ struct RenderSettings {
   // Biased: scale each contribution but emission seen by the camera down to at most this
   // luminance (0 = off), trading energy for fewer fireflies.
   float contributionClamp = 0.0f;
+  // Adaptive sampling (shaders/common/accumulation.h): from adaptiveMinSamples on, a pixel
+  // whose estimated relative error is below adaptiveThreshold receives no more samples
+  // (0: off, every pixel gets every sample).
+  float adaptiveThreshold = 0.0f;
+  uint32_t adaptiveMinSamples = 16;
 
   uint32_t sampleEnd() const { return endSample == 0 ? samplesPerPixel : endSample; }
   uint32_t samplesInRange() const { return sampleEnd() - firstSample; }

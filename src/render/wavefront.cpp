@@ -49,6 +49,8 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
                                                                             : WP_LIGHT_SELECTION_POWER;
   p.punctualLightCount = gpuScene.punctualLightCount;
+  p.adaptiveThreshold = settings.adaptiveThreshold;
+  p.adaptiveMinSamples = settings.adaptiveMinSamples;
   return p;
 }
 
@@ -81,10 +83,7 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   pathsDone_ = firstPath_;
   tiles_ = splitIntoTiles(region, backend_.maxAccumulationPixels(settings_.maxPaths));
   tiledSums_ = {};
-  if (tiles_.size() > 1) {
-    tiledSums_.sum.assign(region.pixels(), glm::vec4(0.0f));
-    tiledSums_.sumSquares.assign(region.pixels(), glm::vec4(0.0f));
-  }
+  if (tiles_.size() > 1) tiledSums_ = Accumulation::zeros(region.pixels());
   configureTile(0);
 }
 
@@ -115,8 +114,10 @@ void WavefrontRenderer::storeTile() {
   const Accumulation tile = backend_.readAccumulation();
   const PixelRegion region = settings_.pixelRegion();
   const size_t at = size_t(tiles_[tile_].y0 - region.y0) * region.width();  // tiles are bands of whole rows
-  std::copy(tile.sum.begin(), tile.sum.end(), tiledSums_.sum.begin() + long(at));
-  std::copy(tile.sumSquares.begin(), tile.sumSquares.end(), tiledSums_.sumSquares.begin() + long(at));
+  for (uint32_t layer = 0; layer < WP_ACCUMULATION_LAYERS; ++layer) {
+    const std::vector<glm::vec4>& from = *tile.layers()[layer];
+    std::copy(from.begin(), from.end(), tiledSums_.layers()[layer]->begin() + long(at));
+  }
 }
 
 void WavefrontRenderer::resume(const Accumulation& accumulation, uint64_t pathsDone) {
@@ -142,6 +143,11 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
   // Generate fills bounce 0's ray queue and sizes extend and shade to it; each advance sizes
   // connect of its bounce and extend and shade of the next (queues.h).
   backend_.dispatch({Kernel::Generate, constants(0), DispatchSize::fixed(pathCount), DispatchArguments::Written});
+  if (params_.adaptiveThreshold > 0.0f) {
+    // Generate appended only the rays of pixels still sampling: size bounce 0 to them.
+    backend_.dispatch(
+        {Kernel::Advance, constants(WP_AFTER_GENERATE), DispatchSize::fixed(1), DispatchArguments::Written});
+  }
   for (uint32_t bounce = 0; bounce < bounces; ++bounce) {
     backend_.dispatch({Kernel::Extend, constants(bounce), DispatchSize::rayQueue()});
     backend_.dispatch({Kernel::Shade, constants(bounce), DispatchSize::rayQueue()});
@@ -170,11 +176,22 @@ void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats
   stats.samples += count;
 }
 
+uint64_t WavefrontRenderer::pathsPerPass() const {
+  if (!(settings_.adaptiveThreshold > 0.0f)) return params_.maxPaths;
+  // Adaptive sampling decides between passes which pixels the next one traces: a pass of a
+  // few samples per pixel (as many as lie between two checks) lets it leave out pixels soon
+  // after they stop, at the cost of more passes; kSmallestAdaptivePass paths at least keep
+  // a small image's passes from being all overhead.
+  constexpr uint64_t kSmallestAdaptivePass = 1u << 16;
+  const uint64_t betweenChecks = uint64_t(params_.pixelCount) * WP_ADAPTIVE_INTERVAL;
+  return std::min<uint64_t>(params_.maxPaths, std::max(betweenChecks, kSmallestAdaptivePass));
+}
+
 RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats&)>& afterPass) {
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   while (pathsDone_ < pathsEnd()) {
-    runNextPass(pathsEnd(), params_.maxPaths, stats);
+    runNextPass(pathsEnd(), pathsPerPass(), stats);
     if (tiles_.size() > 1 && pathsDone_ == tileEnd(tile_)) {
       storeTile();
       if (tile_ + 1 < tiles_.size()) configureTile(tile_ + 1);
@@ -253,17 +270,26 @@ RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
-  const uint64_t done = pathsDone_ - firstPath_;
-  const uint64_t fullSamples = done / pixels, startedPixels = done % pixels;
+  image.albedo.resize(pixels);
+  image.normal.resize(pixels);
+  image.depth.resize(pixels);
+  // With adaptive sampling the pixels hold different numbers of samples, which the EXR keeps.
+  if (settings_.adaptiveThreshold > 0.0f) image.sampleCount.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) {
-    // Mid-pass (progressive rendering), the first startedPixels pixels have one more sample.
-    double n = double(std::max<uint64_t>(fullSamples + (i < startedPixels ? 1 : 0), 1));
+    // The samples the pixel holds: its own count (mid-pass in progressive rendering, or
+    // stopped early by adaptive sampling, pixels differ).
+    const float count = gpu::sampleCountOf(acc.sum[i]);
+    if (!image.sampleCount.empty()) image.sampleCount[i] = count;
+    double n = std::max(double(count), 1.0);
     glm::vec3 mean = glm::vec3(acc.sum[i]) / float(n);
     glm::vec3 meanSquare = glm::vec3(acc.sumSquares[i]) / float(n);
     // Unbiased sample variance, divided by n: the variance of the pixel's mean estimate.
     glm::vec3 sampleVariance = n > 1 ? glm::max(meanSquare - mean * mean, glm::vec3(0.0f)) * float(n / (n - 1)) : glm::vec3(0.0f);
     image.mean[i] = mean;
     image.variance[i] = sampleVariance / float(n);
+    image.albedo[i] = gpu::albedoSumOf(acc.albedoDepth[i]) / float(n);
+    image.normal[i] = glm::vec3(acc.normal[i]) / float(n);
+    image.depth[i] = gpu::depthSumOf(acc.albedoDepth[i]) / float(n);
   }
   return image;
 }

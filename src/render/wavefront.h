@@ -81,6 +81,8 @@ public:
 
 private:
   void runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats);
+  // The paths of a pass of render(): the paths in flight, or fewer with adaptive sampling.
+  uint64_t pathsPerPass() const;
   // Runs the next pass of at most `maxCount` paths, stopping at path index `end`.
   void runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats);
   void configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);

@@ -128,6 +128,7 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
     hits_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::HitRecord));
     shadowRays_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::ShadowRay));
     pathRadiance_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(glm::vec4));
+    pathFeatures_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::PathFeatures));
     counters_ = OpenClBuffer(context, CL_MEM_READ_WRITE, sizeof(gpu::QueueCounters));
   }
   pixelCount_ = params.pixelCount;
@@ -135,6 +136,9 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
   const float zero = 0.0f;
   CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,
                                accumulation_.size(), 0, nullptr, nullptr));
+  const uint32_t empty = 0;  // empty queues (queues.h)
+  CL_CHECK(clEnqueueFillBuffer(context_->queue, counters_.handle(), &empty, sizeof(empty), 0, counters_.size(), 0,
+                               nullptr, nullptr));
   CL_CHECK(clFinish(context_->queue));
   bindPathState();
 }
@@ -145,6 +149,7 @@ void OpenClBackend::bindPathState() {
   bind(gpu::Binding::hits, hits_);
   bind(gpu::Binding::shadowRays, shadowRays_);
   bind(gpu::Binding::pathRadiance, pathRadiance_);
+  bind(gpu::Binding::pathFeatures, pathFeatures_);
   bind(gpu::Binding::counters, counters_);
   bind(gpu::Binding::accumulation, accumulation_);
 }
@@ -242,19 +247,16 @@ PassResult OpenClBackend::endPass() {
 }
 
 Accumulation OpenClBackend::readAccumulation() {
-  std::vector<glm::vec4> both(2ull * pixelCount_);
-  CL_CHECK(clEnqueueReadBuffer(context_->queue, accumulation_.handle(), CL_TRUE, 0, both.size() * sizeof(glm::vec4),
-                               both.data(), 0, nullptr, nullptr));
-  Accumulation result;
-  result.sum.assign(both.begin(), both.begin() + pixelCount_);
-  result.sumSquares.assign(both.begin() + pixelCount_, both.end());
-  return result;
+  std::vector<glm::vec4> buffer(uint64_t(WP_ACCUMULATION_LAYERS) * pixelCount_);
+  CL_CHECK(clEnqueueReadBuffer(context_->queue, accumulation_.handle(), CL_TRUE, 0,
+                               buffer.size() * sizeof(glm::vec4), buffer.data(), 0, nullptr, nullptr));
+  return accumulationOfBuffer(buffer, pixelCount_);
 }
 
 void OpenClBackend::writeAccumulation(const Accumulation& accumulation) {
-  std::vector<glm::vec4> both = accumulationBuffer(accumulation, pixelCount_);
-  CL_CHECK(clEnqueueWriteBuffer(context_->queue, accumulation_.handle(), CL_TRUE, 0, both.size() * sizeof(glm::vec4),
-                                both.data(), 0, nullptr, nullptr));
+  std::vector<glm::vec4> buffer = accumulationBuffer(accumulation, pixelCount_);
+  CL_CHECK(clEnqueueWriteBuffer(context_->queue, accumulation_.handle(), CL_TRUE, 0,
+                                buffer.size() * sizeof(glm::vec4), buffer.data(), 0, nullptr, nullptr));
 }
 
 }  // namespace wp

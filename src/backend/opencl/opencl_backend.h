@@ -81,6 +81,7 @@ private:
   OpenClBuffer hits_;
   OpenClBuffer shadowRays_;
   OpenClBuffer pathRadiance_;
+  OpenClBuffer pathFeatures_;
   OpenClBuffer counters_;
   OpenClBuffer accumulation_;
   uint32_t pixelCount_ = 0;

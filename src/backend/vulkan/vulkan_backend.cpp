@@ -136,6 +136,7 @@ VulkanBackend::~VulkanBackend() {
   hits_ = {};
   shadowRays_ = {};
   pathRadiance_ = {};
+  pathFeatures_ = {};
   counters_ = {};
   countersReadback_ = {};
   accumulation_ = {};
@@ -268,6 +269,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
     hits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::HitRecord), kQueueUsage, false);
     shadowRays_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::ShadowRay), kQueueUsage, false);
     pathRadiance_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(glm::vec4), storage, false);
+    pathFeatures_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::PathFeatures), storage, false);
     counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
   }
@@ -275,6 +277,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   accumulation_ = VulkanBuffer(*context_, accumulationBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   context_->runOnce([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);  // empty queues (queues.h)
   });
   writeDescriptors();
 }
@@ -286,6 +289,7 @@ void VulkanBackend::writeDescriptors() {
   buffers[gpu::Binding::hits] = buffers[gpu::Binding::hitsTexelView] = &hits_;
   buffers[gpu::Binding::shadowRays] = buffers[gpu::Binding::shadowRaysTexelView] = &shadowRays_;
   buffers[gpu::Binding::pathRadiance] = &pathRadiance_;
+  buffers[gpu::Binding::pathFeatures] = &pathFeatures_;
   buffers[gpu::Binding::counters] = &counters_;
   buffers[gpu::Binding::accumulation] = &accumulation_;
   buffers[gpu::Binding::bsdfTables] = &bsdfTables_;
@@ -430,17 +434,14 @@ PassResult VulkanBackend::endPass() {
 }
 
 Accumulation VulkanBackend::readAccumulation() {
-  Accumulation result;
-  std::vector<glm::vec4> both(2ull * pixelCount_);
-  accumulation_.download(both.data(), both.size() * sizeof(glm::vec4), accumulationReadback_);
-  result.sum.assign(both.begin(), both.begin() + pixelCount_);
-  result.sumSquares.assign(both.begin() + pixelCount_, both.end());
-  return result;
+  std::vector<glm::vec4> buffer(uint64_t(WP_ACCUMULATION_LAYERS) * pixelCount_);
+  accumulation_.download(buffer.data(), buffer.size() * sizeof(glm::vec4), accumulationReadback_);
+  return accumulationOfBuffer(buffer, pixelCount_);
 }
 
 void VulkanBackend::writeAccumulation(const Accumulation& accumulation) {
-  std::vector<glm::vec4> both = accumulationBuffer(accumulation, pixelCount_);
-  accumulation_.upload(both.data(), both.size() * sizeof(glm::vec4));
+  std::vector<glm::vec4> buffer = accumulationBuffer(accumulation, pixelCount_);
+  accumulation_.upload(buffer.data(), buffer.size() * sizeof(glm::vec4));
 }
 
 }  // namespace wp

@@ -61,6 +61,7 @@ private:
   VulkanBuffer hits_;
   VulkanBuffer shadowRays_;
   VulkanBuffer pathRadiance_;
+  VulkanBuffer pathFeatures_;
   VulkanBuffer counters_;
   VulkanBuffer countersReadback_;
   VulkanBuffer accumulation_;
