@@ -49,8 +49,11 @@ TEST_P(Furnace, ClosedEmissiveSphereConvergesToLOverOneMinusAlbedo) {
     ImageMean m = imageMean(image);
     for (int c = 0; c < 3; ++c) {
       double expected = emitted * (1.0 - std::pow(albedo[c], maxBounces + 2)) / (1.0 - albedo[c]);
-      // The 1% bound; the estimate's own noise must be well inside it to mean anything.
-      EXPECT_LT(m.standardError[c], 0.0025 * expected) << "channel " << c;
+      // The 1% bound; the estimate's own noise must be well inside it (3 standard
+      // errors) to mean anything. With NEE the standard error is itself noisy: a light
+      // sample on a facet next to the shading point's is near-singular (heavy-tailed), so
+      // over seeds 0 to 11 it measured 0.0010 to 0.0027 of the expected value (both samplers).
+      EXPECT_LT(m.standardError[c], 0.0033 * expected) << "channel " << c;
       EXPECT_NEAR(m.mean[c], expected, 0.01 * expected) << "channel " << c;
     }
   }
@@ -101,6 +104,43 @@ TEST_P(CornellBox, SolidAngleLightSelectionAgreesWithSelectionByPower) {
       EXPECT_LT(differenceError(means[0], means[a], c), 0.02 * means[0].mean[c]);
     }
   }
+}
+
+// Relative RMSE of `image` against `reference` over all pixels and channels:
+// sqrt(sum of squared errors / sum of squared reference values).
+double relativeRmse(const RadianceImage& image, const RadianceImage& reference) {
+  double squaredError = 0.0, squaredReference = 0.0;
+  for (size_t i = 0; i < image.mean.size(); ++i) {
+    const glm::dvec3 error = glm::dvec3(image.mean[i]) - glm::dvec3(reference.mean[i]);
+    squaredError += glm::dot(error, error);
+    squaredReference += glm::dot(glm::dvec3(reference.mean[i]), glm::dvec3(reference.mean[i]));
+  }
+  return std::sqrt(squaredError / squaredReference);
+}
+
+// The Sobol sampler (the default) stratifies each pixel's samples: at equal samples its image
+// is closer to Cycles' 4096-spp Lambertian box (tests/data/cornell-cycles-64.exr, box-averaged
+// to 64x64: its own noise is negligible here) than the independent sampler's, and it stays
+// unbiased (the means agree by expectAgreement's z test). At 16 spp it measures 0.57 of the
+// independent sampler's error on both backends (the light's edges weigh most); each is a
+// ratio of two RMSEs over 12288 pixel-channels, whose noise is a few percent, so 0.8
+// separates the two samplers with room while a sampler that stratifies nothing (near 1) fails.
+TEST_P(CornellBox, SobolSamplerIsUnbiasedAndCloserToTheReferenceThanIndependentSampling) {
+  const RadianceImage reference = readExr(sourceDirectory() / "tests" / "data" / "cornell-cycles-64.exr");
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  std::vector<ImageMean> means;
+  std::vector<double> errors;
+  for (const char* sampler : {"sobol", "independent"}) {
+    RadianceImage image = render(scene, {"--width", "64", "--height", "64", "--spp", "16", "--max-depth", "8",
+                                         "--sampler", sampler});
+    ASSERT_EQ(image.mean.size(), reference.mean.size());
+    means.push_back(imageMean(image));
+    errors.push_back(relativeRmse(image, reference));
+  }
+  std::printf("relative RMSE at 16 spp: sobol %.4f, independent %.4f (ratio %.3f)\n", errors[0], errors[1],
+              errors[0] / errors[1]);
+  EXPECT_LT(errors[0], 0.8 * errors[1]);
+  expectAgreement(means, {"sobol", "independent"});
 }
 
 TEST_P(Determinism, SameSeedGivesTheSameImageAndAnotherSeedDoesNot) {

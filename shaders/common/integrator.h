@@ -8,7 +8,7 @@
 #include "bsdf.h"
 #include "environment.h"
 #include "lights.h"
-#include "rng.h"
+#include "sampler.h"
 #include "sampling.h"
 #include "surface.h"
 #include "texture.h"
@@ -300,47 +300,48 @@ WP_FN_INLINED ShadowConnection sampleDirectLight(WP_BUFFERS RenderParams params,
 
 // Russian roulette on a path whose throughput becomes `throughput` past v: from
 // params.rouletteStart on, it survives with probability max(throughput), clamped to 1,
-// decided by the next number of the stream `rng`. The state after it, and the survival
-// probability (0: the path ends).
+// decided by the vertex's roulette number of `samples`. The samples after it, and the
+// survival probability (0: the path ends).
 WP_STRUCT(RouletteResult)
-  uint rng;
+  PathSamples samples;
   float survival;
 WP_STRUCT_END(RouletteResult)
-WP_FN_INLINED RouletteResult russianRoulette(RenderParams params, uint bounce, vec3 throughput, uint rng) {
+WP_FN_INLINED RouletteResult russianRoulette(RenderParams params, uint bounce, vec3 throughput, PathSamples samples) {
   RouletteResult r;
-  r.rng = rng;
+  r.samples = samples;
   r.survival = 1.0f;
   if (bounce >= params.rouletteStart) {
     r.survival = min(1.0f, maxComponent(throughput));
-    r.rng = rngNext(rng);
-    if (rngFloat(r.rng) >= r.survival) {
+    PathDraw1 draw = drawPath1(params.samplerKind, samples, vertexDimension(bounce) + WP_DIM_ROULETTE);
+    r.samples = draw.samples;
+    if (draw.u >= r.survival) {
       r.survival = 0.0f;
     }
   }
   return r;
 }
 
-// BSDF sampling at v with the draw `draw` (its numbers and the stream's state after them):
+// BSDF sampling at v with the draw `draw` (its numbers and the path's samples after them):
 // the continuation of the path, which survived Russian roulette, unless it ends here.
 //
 // From the last vertex a ray is still traced, only to collect emission the light sample
 // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
 // with NEE alone, what only a delta lobe reaches.
-WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, RngDraw3 draw) {
+WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, PathDraw3 draw) {
   NextRay next;
   next.exists = false;
   MaterialSample bs = sampleBsdf(m, v.woLocal, draw.u, params.bsdfFlags);
   bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
   if (v.bounce < params.maxBounces || params.mode != WP_MODE_NEE || isDelta) {
     vec3 nextThroughput = v.throughput * bs.weight;
-    RouletteResult roulette = russianRoulette(params, v.bounce, nextThroughput, draw.state);
+    RouletteResult roulette = russianRoulette(params, v.bounce, nextThroughput, draw.samples);
     vec3 wi = frameToWorld(v.frame, bs.wi);
     bool agrees = sidesAgree(v.woSide, dot(v.normal, wi), v.woLocal.z * bs.wi.z);
     if (bs.pdf > 0.0f && agrees && roulette.survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
       vec3 origin = offsetRayOrigin(v.position, v.normal, wi);
       nextThroughput = nextThroughput / roulette.survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;
-      next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, roulette.rng, v.bounce + 1u,
+      next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, roulette.samples, v.bounce + 1u,
                              v.rayFlags);
       next.exists = true;
     }
@@ -362,8 +363,8 @@ WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuM
 //
 // A vertex goes through: the surface and its material, emissionAtHit (with its MIS
 // weight), then, below the bounce limit, sampleDirectLight (next event estimation) and
-// sampleContinuation (BSDF sampling and Russian roulette), each with its own three numbers
-// of the path's stream, drawn in that order.
+// sampleContinuation (BSDF sampling and Russian roulette), each with its own numbers from
+// the path's sampler (the vertex's dimensions of sampler.h), drawn in that order.
 WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
                            uint primitive) {
   ShadeResult r;
@@ -404,17 +405,20 @@ WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t,
     v.rayFlags |= WP_RAY_FEATURES_TAKEN;
   }
   m.clearcoatNormal = localCoatNormal(WP_BUFFERS_ARG m, unmapped, v.frame);
-  uint rng = rayRngState(ray);
+  PathSamples samples = rayPathSamples(ray);
+  uint samplerKind = params.samplerKind;
+  uint firstDimension = vertexDimension(v.bounce);
   if (samplesLights(params)) {
-    RngDraw3 lightDraw = rngFloat3(rng);
-    rng = lightDraw.state;
+    PathDraw3 lightDraw = drawPath3(samplerKind, samples, firstDimension + WP_DIM_LIGHT_CHOICE);
+    samples = lightDraw.samples;
     ShadowConnection shadow = sampleDirectLight(WP_BUFFERS_ARG params, v, m, lightDraw.u);
     if (shadow.exists) {
       r.shadow = shadow.ray;
       r.flags |= WP_SHADE_SHADOW;
     }
   }
-  NextRay next = sampleContinuation(params, v, m, rngFloat3(rng));
+  NextRay next =
+      sampleContinuation(params, v, m, drawPath3(samplerKind, samples, firstDimension + WP_DIM_BSDF_LOBE));
   if (next.exists) {
     r.next = next.ray;
     r.flags |= WP_SHADE_EXTEND;

@@ -11,6 +11,7 @@
 #define WP_LAYOUT_H
 
 #include "portable.h"
+#include "sampler.h"
 #include "thin_lens.h"
 
 WP_BEGIN
@@ -459,16 +460,16 @@ WP_STRUCT(RenderParams)
   // relative error is below adaptiveThreshold (0: off), checked from adaptiveMinSamples on.
   float adaptiveThreshold;
   uint adaptiveMinSamples;
+  uint samplerKind;  // WP_SAMPLER_* (sampler.h)
   uint unused0;
-  uint unused1;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.
 //   origin: xyz; w: asFloat(path slot in this pass)
 //   direction: xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
 //   throughput: rgb; w: the path's shutter time in [0, 1) (motion blur)
-//   state: x: RNG state, y: bounce of the vertex this ray will hit, z: WP_RAY_* flags,
-//     w: unused
+//   state: x: the sampler's state (PathSamples), y: bounce of the vertex this ray will hit,
+//     z: WP_RAY_* flags, w: the path's sample index in its pixel
 #define WP_FIELDS_PathRay(F) \
   F(vec4, origin)            \
   F(vec4, direction)         \
@@ -483,19 +484,24 @@ WP_FN vec3 rayDirection(PathRay r) { return make_vec3(r.direction.x, r.direction
 WP_FN float rayBsdfPdf(PathRay r) { return r.direction.w; }
 WP_FN vec3 rayThroughput(PathRay r) { return make_vec3(r.throughput.x, r.throughput.y, r.throughput.z); }
 WP_FN float rayTime(PathRay r) { return r.throughput.w; }
-WP_FN uint rayRngState(PathRay r) { return r.state.x; }
+WP_FN PathSamples rayPathSamples(PathRay r) {
+  PathSamples p;
+  p.state = r.state.x;
+  p.sampleIndex = r.state.w;
+  return p;
+}
 WP_FN uint rayBounce(PathRay r) { return r.state.y; }
 // PathRay flags.
 #define WP_RAY_FEATURES_TAKEN 1u  // the path's feature passes are recorded (PathFeatures)
 WP_FN uint rayFlagsOf(PathRay r) { return r.state.z; }
 WP_FN bool rayFeaturesTaken(PathRay r) { return (rayFlagsOf(r) & WP_RAY_FEATURES_TAKEN) != 0u; }
 WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
-                          uint rngState, uint bounce, uint flags) {
+                          PathSamples samples, uint bounce, uint flags) {
   PathRay r;
   r.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
   r.direction = make_vec4(direction.x, direction.y, direction.z, bsdfPdf);
   r.throughput = make_vec4(throughput.x, throughput.y, throughput.z, time);
-  r.state = make_uvec4(rngState, bounce, flags, 0u);
+  r.state = make_uvec4(samples.state, bounce, flags, samples.sampleIndex);
   return r;
 }
 

@@ -1,4 +1,5 @@
-// Random numbers: a 32-bit PCG stream per path, seeded by hashing (pixel, sample, seed).
+// Random numbers: a 32-bit PCG stream per path, seeded by hashing (pixel, sample, seed); the
+// independent sampler of sampler.h, and the hash that seeds the Sobol one.
 #ifndef WP_RNG_H
 #define WP_RNG_H
 
@@ -30,27 +31,8 @@ WP_FN float rngFloat(uint state) {
   return toFloat(word >> 8u) * 5.9604644775390625e-8f;
 }
 
-// Three consecutive draws of a stream (a light sample, a BSDF sample): the state after them
-// and the numbers, in draw order.
-WP_STRUCT(RngDraw3)
-  uint state;
-  vec3 u;
-WP_STRUCT_END(RngDraw3)
-
-WP_FN RngDraw3 rngFloat3(uint state) {
-  RngDraw3 d;
-  d.state = rngNext(state);
-  float u0 = rngFloat(d.state);
-  d.state = rngNext(d.state);
-  float u1 = rngFloat(d.state);
-  d.state = rngNext(d.state);
-  d.u = make_vec3(u0, u1, rngFloat(d.state));
-  return d;
-}
-
-// A path's normalized shutter time in [0, 1) (motion blur), from the state rngSeed gave it:
-// hashed apart from the path's stream rather than drawn from it, so that no other dimension
-// shifts and scenes without motion render bit for bit as they did before time existed.
+// A path's normalized shutter time in [0, 1) (motion blur), from the state rngSeed gave it,
+// hashed apart from the stream (sampler.h says why).
 WP_FN float rngTime(uint seedState) { return rngFloat(pcgHash(seedState ^ 0x6d2b79f5u)); }
 
 WP_END

@@ -9,7 +9,7 @@
 #include "binding_table.h"
 #include "integrator.h"
 #include "queues.h"
-#include "rng.h"
+#include "sampler.h"
 #include "thin_lens.h"
 #include "traverse.h"
 
@@ -25,30 +25,26 @@ WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
 
 // The camera ray of path slot `slot` of the pass `pc`: slot i is pixel (firstPixel + i) %
 // pixels of the region of sample firstSample + (firstPixel + i) / pixels (see
-// PassConstants), through a uniformly jittered point of that pixel (a box filter) and a
-// point uniform on the lens aperture, at a shutter time uniform in [0, 1), with the path's
-// random stream seeded from (image pixel, sample, seed): a pixel's paths are the same
-// whichever region or batch of samples traces them.
+// PassConstants), through a point of that pixel (a box filter) and a point on the lens
+// aperture, at a shutter time in [0, 1), all uniform, drawn by the render's sampler from
+// (image pixel, sample, seed): a pixel's paths are the same whichever region or batch of
+// samples traces them.
 WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint pixels = params.pixelCount;
   uint linear = pc.firstPixel + slot;
   uint pixel = imagePixel(params, linear % pixels);
   uint sampleIndex = pc.firstSample + linear / pixels;
 
-  uint rng = rngSeed(pixel, sampleIndex, params.seed);
-  float time = rngTime(rng);
-  rng = rngNext(rng);
-  float jx = rngFloat(rng);
-  rng = rngNext(rng);
-  float jy = rngFloat(rng);
-  rng = rngNext(rng);
-  float lensU = rngFloat(rng);
-  rng = rngNext(rng);
-  float lensV = rngFloat(rng);
+  uint samplerKind = params.samplerKind;
+  PathSamples samples = startPathSamples(samplerKind, pixel, sampleIndex, params.seed);
+  float time = pathTime(samplerKind, samples);
+  PathDraw2 jitter = drawPath2(samplerKind, samples, WP_DIM_FILM);
+  PathDraw2 lens = drawPath2(samplerKind, jitter.samples, WP_DIM_LENS);
   uint width = params.width;
-  vec2 film = make_vec2(toFloat(pixel % width) + jx, toFloat(pixel / width) + jy);
-  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, make_vec2(lensU, lensV));
-  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, rng, 0u, 0u);
+  vec2 film = make_vec2(toFloat(pixel % width), toFloat(pixel / width)) + jitter.u;
+  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, lens.u);
+  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, lens.samples,
+                     0u, 0u);
 }
 
 // The closest hit of `ray`, as shade reads it.

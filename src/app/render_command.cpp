@@ -269,6 +269,12 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
   cmd->add_option("--max-depth", s.maxBounces, "Maximum bounces, as Cycles counts them (0 = direct light only)")
       ->check(CLI::Range(0u, 1024u));
   cmd->add_option("--seed", s.seed, "Random seed; the same seed gives the same image");
+  static const std::map<std::string, SamplerKind> samplers = {{"sobol", SamplerKind::Sobol},
+                                                              {"independent", SamplerKind::Independent}};
+  cmd->add_option("--sampler", s.sampler,
+                  "Random numbers of the paths: sobol (Owen-scrambled Sobol, stratified across each pixel's samples; "
+                  "the default) or independent (a PCG stream per path)")
+      ->transform(CLI::CheckedTransformer(samplers, CLI::ignore_case));
   static const std::map<std::string, IntegratorMode> modes = {
       {"mis", IntegratorMode::Mis}, {"nee", IntegratorMode::NeeOnly}, {"bsdf", IntegratorMode::BsdfOnly}};
   cmd->add_option("--mode", s.mode,

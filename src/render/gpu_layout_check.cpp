@@ -33,6 +33,7 @@ static_assert(offsetof(RenderParams, maxBounces) == 128);
 static_assert(offsetof(RenderParams, planeCount) == 144);
 static_assert(offsetof(RenderParams, bsdfFlags) == 160);
 static_assert(offsetof(RenderParams, regionX) == 176);
+static_assert(offsetof(RenderParams, samplerKind) == 200);
 static_assert(offsetof(GpuEnvironment, width) == 16);
 
 // The binding table: each row's stride is its element's size in 16-byte texels (what the

@@ -23,6 +23,7 @@ std::string settingsFlags(const RenderSettings& s) {
   std::snprintf(adaptive, sizeof(adaptive), "%.9g", double(s.adaptiveThreshold));
   std::string flags = "--width " + std::to_string(s.width) + " --height " + std::to_string(s.height) +
                       " --max-depth " + std::to_string(s.maxBounces) + " --seed " + std::to_string(s.seed) +
+                      " --sampler " + (s.sampler == SamplerKind::Sobol ? "sobol" : "independent") +
                       " --mode " + mode + " --rr-start " + std::to_string(s.russianRouletteStart) +
                       " --light-selection " +
                       (s.lightSelection == LightSelection::Power ? "power" : "solid-angle") + " --clamp " + clamp +

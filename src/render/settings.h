@@ -7,6 +7,8 @@ namespace wp {
 
 enum class IntegratorMode { Mis, NeeOnly, BsdfOnly };
 enum class LightSelection { Power, SolidAngle };
+// Where a path's random numbers come from (shaders/common/sampler.h, docs/sampling.md).
+enum class SamplerKind { Sobol, Independent };
 
 // A crop of the image: columns [x0, x1) and rows [y0, y1), in pixels from the top left.
 struct PixelRegion {
@@ -33,6 +35,9 @@ struct RenderSettings {
   // segments (camera ray, maxBounces bounces, and the segment that reaches the light).
   uint32_t maxBounces = 8;
   uint32_t seed = 0;
+  // Owen-scrambled Sobol, stratified across each pixel's samples, or independent PCG
+  // streams (the sampler before Sobol, kept for comparison).
+  SamplerKind sampler = SamplerKind::Sobol;
   IntegratorMode mode = IntegratorMode::Mis;
   // First bounce at which Russian roulette may end a path. Short paths carry most of the
   // image's energy, and ending them early adds variance for little saved work.

@@ -27,6 +27,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.height = settings.height;
   p.pixelCount = uint32_t(region.pixels());
   p.seed = settings.seed;
+  p.samplerKind = settings.sampler == SamplerKind::Sobol ? WP_SAMPLER_SOBOL : WP_SAMPLER_INDEPENDENT;
   p.regionX = region.x0;
   p.regionY = region.y0;
   p.regionWidth = region.width();
