@@ -234,32 +234,54 @@ TEST_F(HostileSky, TruncatedExrIsAnError) {
   }
 }
 
-TEST_F(HostileSky, PizCompressedExrIsRefused) {
-  // tinyexr's PIZ decoder copies what a chunk's header says, past the chunk (fuzz_exr found a
-  // heap overflow): wavepath reads no PIZ file, damaged or not. This one is intact.
+// A 2x2 EXR of float B, G and R planes (the order OpenEXR sorts them in) and, with
+// `idChannel`, a UINT plane "id" after them, written by tinyexr with `compression`.
+void writeSmallExr(const fs::path& path, int compression, bool idChannel) {
   const float red[4] = {1, 2, 3, 4}, green[4] = {0, 0, 0, 0}, blue[4] = {5, 5, 5, 5};
-  const float* planes[3] = {blue, green, red};  // B, G, R: the order OpenEXR sorts them in
-  EXRChannelInfo channels[3] = {};
+  const uint32_t ids[4] = {7, 7, 9, 9};
+  const void* planes[4] = {blue, green, red, ids};
+  EXRChannelInfo channels[4] = {};
   std::strcpy(channels[0].name, "B");
   std::strcpy(channels[1].name, "G");
   std::strcpy(channels[2].name, "R");
-  int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+  std::strcpy(channels[3].name, "id");
+  int types[4] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_UINT};
   EXRHeader header;
   InitEXRHeader(&header);
-  header.num_channels = 3;
+  header.num_channels = idChannel ? 4 : 3;
   header.channels = channels;
   header.pixel_types = types;
   header.requested_pixel_types = types;
-  header.compression_type = TINYEXR_COMPRESSIONTYPE_PIZ;
+  header.compression_type = compression;
   EXRImage image;
   InitEXRImage(&image);
-  image.images = reinterpret_cast<unsigned char**>(const_cast<float**>(planes));
+  image.images = reinterpret_cast<unsigned char**>(const_cast<void**>(planes));
   image.width = 2;
   image.height = 2;
-  image.num_channels = 3;
+  image.num_channels = header.num_channels;
   const char* err = nullptr;
-  ASSERT_EQ(SaveEXRImageToFile(&image, &header, (dir / "piz.exr").c_str(), &err), TINYEXR_SUCCESS);
+  ASSERT_EQ(SaveEXRImageToFile(&image, &header, path.c_str(), &err), TINYEXR_SUCCESS);
+}
+
+TEST_F(HostileSky, PizCompressedExrIsRefused) {
+  // tinyexr's PIZ decoder copies what a chunk's header says, past the chunk (fuzz_exr found a
+  // heap overflow): wavepath reads no PIZ file, damaged or not. This one is intact.
+  writeSmallExr(dir / "piz.exr", TINYEXR_COMPRESSIONTYPE_PIZ, false);
   expectRefused(scene, "PIZ-compressed", {"--sky", (dir / "piz.exr").string()});
+}
+
+TEST_F(HostileSky, ExrWithAnIntegerChannelIsRefused) {
+  // tinyexr's bound check of a UINT plane is 3 bytes short, so a chunk cut inside one reads
+  // past the file (fuzz_exr's long run found it through a channel wavepath does not even
+  // use): wavepath reads no file with a UINT channel. This one is intact, and its radiance
+  // channels are fine.
+  writeSmallExr(dir / "id.exr", TINYEXR_COMPRESSIONTYPE_NONE, true);
+  expectRefused(scene, "channel id holds integers", {"--sky", (dir / "id.exr").string()});
+  writeSmallExr(dir / "rgb.exr", TINYEXR_COMPRESSIONTYPE_NONE, false);
+  RunResult r = runWavepath({"render", scene.string(), "--sky", (dir / "rgb.exr").string(), "-o",
+                             (dir / "out.png").string(), "--width", "8", "--height", "8", "--spp", "1"},
+                            {}, kTimeoutSeconds);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 TEST_F(HostileSky, TruncatedHdrOrARunOfZeroIsAnError) {

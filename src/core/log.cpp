@@ -64,4 +64,16 @@ void flushWarnings() {
 
 void note(const std::string& message) { std::fprintf(stderr, "wavepath: note: %s\n", message.c_str()); }
 
+std::string printable(const std::string& text, size_t maxLength) {
+  std::string out;
+  for (char c : text) {
+    if (out.size() >= maxLength) {
+      out += "...";
+      break;
+    }
+    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
+  }
+  return out;
+}
+
 }  // namespace wp

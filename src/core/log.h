@@ -1,6 +1,7 @@
 // Warnings and notes on stderr, in one format, so users and tests can rely on them.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace wp {
@@ -14,5 +15,9 @@ void warn(const std::string& message);
 void flushWarnings();
 // Prints "wavepath: note: <message>" on stderr.
 void note(const std::string& message);
+
+// Text taken from a file (a name, a library's message) made fit for one message line:
+// control characters become spaces, and past maxLength characters it ends in "...".
+std::string printable(const std::string& text, size_t maxLength);
 
 }  // namespace wp

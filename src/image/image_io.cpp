@@ -16,6 +16,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_read.h"
+#include "core/log.h"
 #include "shaders/common/exposure.h"
 #include "shaders/common/tone_curves.h"
 
@@ -286,9 +287,14 @@ RadianceImage readExr(const fs::path& path) {
     if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
       exr.header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
   }
-  for (int c = 0; c < kChannels; ++c) {
-    if (index[c] >= 0 && exr.header.pixel_types[index[c]] == TINYEXR_PIXELTYPE_UINT)
-      failRead(path, std::string("channel ") + names[c] + " holds integers, not floats; save it as half or float");
+  // Any UINT channel is refused, read or not: tinyexr (1.0.1) decodes every channel, and its
+  // bound check of a UINT plane is 3 bytes short, so a chunk cut inside one reads past the
+  // file (found by fuzz_exr). HALF is read as FLOAT for the same reason: its HALF-to-HALF
+  // copy checks nothing.
+  for (int c = 0; c < exr.header.num_channels; ++c) {
+    if (exr.header.pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
+      failRead(path, "channel " + printable(exr.header.channels[c].name, 60) +
+                         " holds integers, not floats; save the image without it, or as half or float");
   }
   // tinyexr (1.0.1) sets the image's channel count only once decoding succeeds, but on a
   // failure frees the image by it (DecodeEXRImage: FreeEXRImage): set beforehand, every plane

@@ -11,18 +11,6 @@ namespace {
 constexpr size_t kMaxNameLength = 60;
 constexpr size_t kMaxPartLength = 200;
 
-std::string printable(const std::string& text, size_t maxLength) {
-  std::string out;
-  for (char c : text) {
-    if (out.size() >= maxLength) {
-      out += "...";
-      break;
-    }
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
-  }
-  return out;
-}
-
 std::string trim(const std::string& text) {
   const size_t first = text.find_first_not_of(" \t\r");
   if (first == std::string::npos) return {};

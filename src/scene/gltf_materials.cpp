@@ -227,10 +227,11 @@ bool readLayerTextures(const Context& ctx, const tinygltf::Material& material, c
 
 // Reads the base colour, metallic-roughness, normal and emissive textures into `table`, each
 // with its texCoord and KHR_texture_transform; returns whether the material has textures
-// that wavepath ignores (occlusion, or a texture on TEXCOORD_2 or later).
+// that wavepath leaves out (on TEXCOORD_2 or later). The occlusion texture is not read and
+// not warned about: it approximates, for rasterizers, the occlusion a path tracer computes.
 bool readTextures(const Context& ctx, const tinygltf::Material& material, const std::string& where,
                   TextureTable& table, Material& out) {
-  bool ignored = material.occlusionTexture.index >= 0;
+  bool ignored = false;
   // The slot's index in `table` (-1: none), noting a texture it had to leave out.
   const auto slot = [&](const auto& info, bool srgb) {
     if (info.index < 0) return -1;
@@ -260,8 +261,8 @@ std::vector<Material> convertMaterials(const Context& ctx, std::vector<Texture>&
   }
   if (ignoring > 0) {
     warnAt(ctx, "", std::to_string(ignoring) + " of " + std::to_string(materials.size()) +
-                        " materials have occlusion textures, or textures on TEXCOORD_2 or "
-                        "later, which wavepath ignores: those render with their constant factors");
+                        " materials have textures on TEXCOORD_2 or later, which wavepath "
+                        "ignores: those render with their constant factors");
   }
   return materials;
 }

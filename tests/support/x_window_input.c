@@ -13,7 +13,12 @@ static Window findWindow(Display* display, const char* title) {
   XQueryTree(display, DefaultRootWindow(display), &root, &parent, &children, &count);
   for (unsigned i = 0; i < count && !found; ++i) {
     char* name = NULL;
-    if (XFetchName(display, children[i], &name) && name != NULL && strncmp(name, title, strlen(title)) == 0) {
+    /* Only a viewable window: GLFW names its window before mapping it, and a key sent then
+       is lost (the focus cannot be set on an unmapped window; on a loaded machine the gap
+       between the two is long enough to hit). */
+    XWindowAttributes attributes;
+    if (XFetchName(display, children[i], &name) && name != NULL && strncmp(name, title, strlen(title)) == 0 &&
+        XGetWindowAttributes(display, children[i], &attributes) && attributes.map_state == IsViewable) {
       found = children[i];
     }
     if (name != NULL) XFree(name);

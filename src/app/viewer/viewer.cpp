@@ -103,6 +103,7 @@ public:
   }
 
   int run() {
+    window_.show();
     auto last = Clock::now();
     while (!glfwWindowShouldClose(window_.handle)) {
       glfwPollEvents();

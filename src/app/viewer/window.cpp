@@ -36,6 +36,9 @@ Window::Window(uint32_t width, uint32_t height, const std::string& title) {
   requireWindowSystem();
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  // Hidden until show(): the renderer compiles and uploads for seconds after this, and a
+  // mapped window that answers no input meanwhile would take keys it then gets all at once.
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
   handle = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (handle == nullptr) {
     std::string reason = gLastGlfwError;
@@ -48,6 +51,8 @@ Window::~Window() {
   glfwDestroyWindow(handle);
   glfwTerminate();
 }
+
+void Window::show() { glfwShowWindow(handle); }
 
 void Window::framebufferSize(uint32_t& width, uint32_t& height) const {
   int w = 0, h = 0;
