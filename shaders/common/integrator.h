@@ -90,6 +90,9 @@ WP_FN GpuMaterial texturedLayers(WP_BUFFERS GpuMaterial m, TexCoords c) {
   vec4 specularColor = textureOrOne(WP_BUFFERS_ARG materialSpecularColorTexture(m), c);
   float specular = textureOrOne(WP_BUFFERS_ARG materialSpecularTexture(m), c).w;
   m.specular = m.specular * make_vec4(specularColor.x, specularColor.y, specularColor.z, specular);
+  if (!WP_SCENE_LAYERED) {
+    return m;
+  }
   vec4 sheenColor = textureOrOne(WP_BUFFERS_ARG materialSheenColorTexture(m), c);
   float sheenRoughness = textureOrOne(WP_BUFFERS_ARG materialSheenRoughnessTexture(m), c).w;
   m.sheen = m.sheen * make_vec4(sheenColor.x, sheenColor.y, sheenColor.z, sheenRoughness);
@@ -149,7 +152,7 @@ WP_FN vec3 normalMapped(WP_BUFFERS uint texture, float scale, SurfaceHit s) {
 // coat's own normal texture (glTF: the coat ignores the base's normal texture). A coat whose
 // normal would not face wo's side of the frame lies flat on the shading normal instead.
 WP_FN vec4 localCoatNormal(WP_BUFFERS GpuMaterial m, SurfaceHit s, Frame frame) {
-  if (!(materialClearcoat(m) > 0.0f)) {
+  if (!WP_SCENE_LAYERED || !(materialClearcoat(m) > 0.0f)) {
     return make_vec4(0.0f, 0.0f, 1.0f, 0.0f);
   }
   vec3 n = frameToLocal(frame, normalMapped(WP_BUFFERS_ARG materialClearcoatNormalTexture(m),

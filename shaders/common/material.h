@@ -157,8 +157,9 @@ WP_FN MaterialSample sampleBaseMaterial(SurfaceMaterial m, vec3 wo, vec3 u, uint
 // GGX of IOR 1.5 (F0 0.04) with its own roughness and normal; the sheen, Charlie's lobe.
 // Directions are mirrored into wo's hemisphere, as the opaque lobes are.
 
+// (WP_SCENE_LAYERED false: the scene has none, and Vulkan compiles the layers away.)
 WP_FN bool hasLayers(SurfaceMaterial m) {
-  return m.clearcoat > 0.0f || max(m.sheenColor.x, max(m.sheenColor.y, m.sheenColor.z)) > 0.0f;
+  return WP_SCENE_LAYERED && (m.clearcoat > 0.0f || max(m.sheenColor.x, max(m.sheenColor.y, m.sheenColor.z)) > 0.0f);
 }
 
 #define WP_COAT_F0 0.04f

@@ -17,6 +17,9 @@ typedef uint4 uvec4;
 // inliner would otherwise keep it a call and copy its struct arguments (9% more
 // instructions in shade), so it is inlined as if still written in place.
 #define WP_FN_INLINED __attribute__((always_inline))
+// What the scene has (prelude_glsl.h): only Vulkan specializes the stages for it.
+#define WP_SCENE_ALPHA_TESTED true
+#define WP_SCENE_LAYERED true
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

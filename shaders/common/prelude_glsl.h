@@ -32,6 +32,12 @@
 // The xyz of a vec4 (for a buffer element, a read of three components).
 #define WP_XYZ(v) (v).xyz
 
+// What the scene has (GpuScene::alphaTested, ::layered): specialization constants the
+// Vulkan backend sets per scene, so that the code of a feature the scene lacks compiles away
+// (lavapipe pays for it even where it is never run). C++ and OpenCL keep them true.
+layout(constant_id = 0) const bool WP_SCENE_ALPHA_TESTED = true;  // traverse.h
+layout(constant_id = 1) const bool WP_SCENE_LAYERED = true;       // material.h
+
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }
 

@@ -284,11 +284,15 @@ WP_FN Hit traceThroughAlpha(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 orig
 // existed: only one that does is traced again, nearest-first, by traceThroughAlpha (with
 // anyHit too, since a surface nearer than the one found may stop the ray). A loop around
 // the traversal, or the alpha test inside it, made opaque scenes trace a third slower on
-// lavapipe. Every decision comes from coverageSeedOf of the ray.
+// lavapipe, and even this second, never-taken traversal (Mesa inlines both) cost 11% of
+// lavapipe's samples/s: so Vulkan builds the tracing stages of a scene without
+// alpha-tested triangles with WP_SCENE_ALPHA_TESTED false (a specialization constant,
+// prelude_glsl.h), where the step compiles away. Every decision comes from coverageSeedOf
+// of the ray.
 WP_FN Hit traceCovered(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction, float tMax,
                        float time, bool anyHit) {
   Hit hit = traceScene(WP_BUFFERS_ARG tlasRoot, planeCount, origin, direction, tMax, time, anyHit);
-  if (hitIsAlphaTested(hit)) {
+  if (WP_SCENE_ALPHA_TESTED && hitIsAlphaTested(hit)) {
     hit = traceThroughAlpha(WP_BUFFERS_ARG tlasRoot, planeCount, origin, direction, tMax, time);
   }
   return hit;

@@ -37,6 +37,12 @@ struct GpuScene {
   // Whether any instance moves during the shutter (has motion keys): the backends then run
   // the stages built with WP_MOTION_BLUR (motion.h), else the ones without.
   bool moving() const { return instances.size() > placedInstances; }
+  // Features that cost lavapipe speed even where unused, so Vulkan compiles them only for
+  // scenes that have them (specialization constants, prelude_glsl.h). alphaTested: some
+  // triangle's material is MASK or BLEND (the traversal's alpha step, traverse.h); layered:
+  // some material has a clear coat or a sheen (material.h's layers).
+  bool alphaTested = false;
+  bool layered = false;
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
   // The light table: world-space emissive triangles (for each still mesh instance in

@@ -3,6 +3,7 @@
 #include "backend/vulkan/vulkan_backend.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 #include "backend/vulkan/vk_check.h"
@@ -204,6 +205,11 @@ VkPipeline VulkanBackend::createPipeline(const uint32_t* words, size_t bytes) {
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
+  const VkSpecializationMapEntry entries[] = {
+      {0, offsetof(SceneConstants, alphaTested), sizeof(VkBool32)},
+      {1, offsetof(SceneConstants, layered), sizeof(VkBool32)}};
+  const VkSpecializationInfo specialization{2, entries, sizeof(sceneConstants_), &sceneConstants_};
+  info.stage.pSpecializationInfo = &specialization;
   info.layout = pipelineLayout_;
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkResult result = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
@@ -215,11 +221,15 @@ VkPipeline VulkanBackend::createPipeline(const uint32_t* words, size_t bytes) {
 void VulkanBackend::loadScene(const GpuScene& scene) {
   vkDeviceWaitIdle(context_->device);
   // Swap in the other build of the stages that have two (the still ones from the
-  // constructor until a moving scene comes); a scene like the last costs nothing.
-  bool motion = scene.moving();
+  // constructor until a moving scene comes), and stages specialized to the scene's features
+  // (none from the constructor) when those change; a scene like the last costs nothing.
+  const bool motion = scene.moving();
+  const SceneConstants constants{scene.alphaTested ? VK_TRUE : VK_FALSE, scene.layered ? VK_TRUE : VK_FALSE};
+  const bool respecialize = !(constants == sceneConstants_);
+  sceneConstants_ = constants;
   for (int k = 0; k < kKernelCount; ++k) {
-    SpirvCode code = spirvFor(Kernel(k), motion);
-    if (code.words != spirvFor(Kernel(k), motion_).words) {
+    const SpirvCode code = spirvFor(Kernel(k), motion);
+    if (respecialize || code.words != spirvFor(Kernel(k), motion_).words) {
       vkDestroyPipeline(context_->device, pipelines_[k], nullptr);
       pipelines_[k] = VK_NULL_HANDLE;  // so that a failure below leaves nothing to destroy twice
       pipelines_[k] = createPipeline(code.words, code.bytes);

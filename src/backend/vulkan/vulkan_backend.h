@@ -35,6 +35,13 @@ private:
   uint64_t pathStateBytes(uint64_t maxPaths) const;
   void createLayouts();
   // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout.
+  // The specialization constants of the stages (prelude_glsl.h), in constant_id order.
+  struct SceneConstants {
+    VkBool32 alphaTested = VK_FALSE;  // WP_SCENE_ALPHA_TESTED
+    VkBool32 layered = VK_FALSE;      // WP_SCENE_LAYERED
+    bool operator==(const SceneConstants&) const = default;
+  };
+  // A compute pipeline of the SPIR-V `words`, specialized to sceneConstants_.
   VkPipeline createPipeline(const uint32_t* words, size_t bytes);
   void writeDescriptors();
   // A view of the whole buffer as texels of `format` (RGBA32UI or R32UI) (kept until the descriptors are rewritten).
@@ -47,6 +54,7 @@ private:
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   std::array<VkPipeline, kKernelCount> pipelines_{};
   bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
+  SceneConstants sceneConstants_;  // and specialized to these (none of the features at first)
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet descriptorSet_ = VK_NULL_HANDLE;
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
