@@ -31,6 +31,11 @@ struct OpenClDeviceInfo {
 // platform is installed.
 std::vector<OpenClDeviceInfo> listOpenClDevices();
 
+// PoCL's way of running a work-group's work-items (POCL_WORK_GROUP_METHOD), which its
+// compiled kernels depend on: set to "cbs" by listOpenClDevices unless the user chose one
+// (opencl_devices.cpp says why), and part of the program cache's key.
+std::string poclWorkGroupMethod();
+
 // What `device` lacks to run the stage kernels (OpenCL C 1.2, a compiler, workgroups of
 // WP_WORKGROUP_SIZE), or an empty string.
 std::string missingRequirement(const OpenClDeviceInfo& device);

@@ -43,6 +43,7 @@ std::string cacheKey(const OpenClDeviceInfo& device, const std::string& options,
   std::snprintf(sourceHash, sizeof(sourceHash), "%016llx", static_cast<unsigned long long>(fnv1a64(source)));
   return "wavepath OpenCL program\nplatform: " + device.platformName + "\ndevice: " + device.name +
          "\ndevice version: " + device.version + "\ndriver: " + device.driverVersion + "\noptions: " + options +
+         "\npocl work-group method: " + poclWorkGroupMethod() +
          "\nsource: " + sourceHash + " " + std::to_string(source.size()) + "\n";
 }
 
