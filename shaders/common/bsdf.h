@@ -57,7 +57,7 @@ WP_FN BsdfEval evalBsdf(GpuMaterial m, vec3 wo, vec3 wi, uint flags) {
   if (m.info.x == WP_MATERIAL_UNLIT) {
     return noEval();
   }
-  if (m.info.x == WP_MATERIAL_LAMBERT) {
+  if (!WP_SCENE_MICROFACET || m.info.x == WP_MATERIAL_LAMBERT) {  // (see prelude_glsl.h)
     return evalLambert(albedoOf(m), wo, wi);
   }
   return evalMaterial(surfaceMaterialOf(m), wo, wi, flags);
@@ -65,7 +65,7 @@ WP_FN BsdfEval evalBsdf(GpuMaterial m, vec3 wo, vec3 wi, uint flags) {
 
 // Whether the material reflects and transmits only in delta directions (materialIsPerfectlySpecular).
 WP_FN bool bsdfIsPerfectlySpecular(GpuMaterial m) {
-  return m.info.x != WP_MATERIAL_LAMBERT && materialIsPerfectlySpecular(surfaceMaterialOf(m));
+  return WP_SCENE_MICROFACET && m.info.x != WP_MATERIAL_LAMBERT && materialIsPerfectlySpecular(surfaceMaterialOf(m));
 }
 
 // u in [0, 1)^3; see sampleMaterial for delta samples.
@@ -73,7 +73,7 @@ WP_FN MaterialSample sampleBsdf(GpuMaterial m, vec3 wo, vec3 u, uint flags) {
   if (m.info.x == WP_MATERIAL_UNLIT) {
     return noSample();
   }
-  if (m.info.x == WP_MATERIAL_LAMBERT) {
+  if (!WP_SCENE_MICROFACET || m.info.x == WP_MATERIAL_LAMBERT) {  // (see prelude_glsl.h)
     return sampleLambert(albedoOf(m), wo, make_vec2(u.y, u.z));
   }
   return sampleMaterial(surfaceMaterialOf(m), wo, u, flags);

@@ -91,7 +91,7 @@ WP_FN BsdfEval evalBaseMaterial(SurfaceMaterial m, vec3 wo, vec3 wi, uint flags)
   if (w.metal > 0.0f) {
     e = addWeighted(e, evalMetal(m.baseColor, m.roughness, wo, wi), w.metal);
   }
-  if (w.glass > 0.0f) {
+  if (WP_SCENE_TRANSMISSIVE && w.glass > 0.0f) {
     e = addWeighted(e, evalGlass(m.baseColor, alpha, m.ior, flags, wo, wi), w.glass);
   }
   if (w.plastic > 0.0f) {
@@ -120,7 +120,7 @@ WP_FN MaterialSample sampleBaseMaterial(SurfaceMaterial m, vec3 wo, vec3 u, uint
     // u.x >= metallic and x < 1, so each division below is by a positive number.
     float x = rescaleUniform(u.x - w.metal, 1.0f - w.metal);
     float transmission = clamp(m.transmission, 0.0f, 1.0f);
-    if (x < transmission) {
+    if (WP_SCENE_TRANSMISSIVE && x < transmission) {
       chosen = w.glass;
       s = sampleGlass(m.baseColor, alpha, m.ior, flags, wo, make_vec3(rescaleUniform(x, transmission), u.y, u.z));
     } else {

@@ -20,6 +20,9 @@ typedef uint4 uvec4;
 // What the scene has (prelude_glsl.h): only Vulkan specializes the stages for it.
 #define WP_SCENE_ALPHA_TESTED true
 #define WP_SCENE_LAYERED true
+#define WP_SCENE_TEXTURED true
+#define WP_SCENE_TRANSMISSIVE true
+#define WP_SCENE_MICROFACET true
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

@@ -32,11 +32,14 @@
 // The xyz of a vec4 (for a buffer element, a read of three components).
 #define WP_XYZ(v) (v).xyz
 
-// What the scene has (GpuScene::alphaTested, ::layered): specialization constants the
-// Vulkan backend sets per scene, so that the code of a feature the scene lacks compiles away
-// (lavapipe pays for it even where it is never run). C++ and OpenCL keep them true.
+// What the scene uses (GpuScene::features): specialization constants the Vulkan backend
+// sets per scene, so that the code of a feature the scene lacks compiles away (lavapipe pays
+// for it even where it never runs). C++ and OpenCL keep them all true.
 layout(constant_id = 0) const bool WP_SCENE_ALPHA_TESTED = true;  // traverse.h
 layout(constant_id = 1) const bool WP_SCENE_LAYERED = true;       // material.h
+layout(constant_id = 2) const bool WP_SCENE_TEXTURED = true;      // texture.h
+layout(constant_id = 3) const bool WP_SCENE_TRANSMISSIVE = true;  // material.h
+layout(constant_id = 4) const bool WP_SCENE_MICROFACET = true;    // bsdf.h
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

@@ -507,16 +507,20 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
     }
   }
   out.triangleCount = out.triangles.size();
-  out.alphaTested = std::any_of(out.triangles.begin(), out.triangles.end(),
-                                [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
+  out.features.alphaTested = std::any_of(out.triangles.begin(), out.triangles.end(),
+                                         [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
   out.sahCost = out.triangleCount ? weightedSah / static_cast<double>(out.triangleCount) : 0.0;
 
   packSky(scene, out);
   out.bvhBuildSeconds += packInstances(scene, meshes, out).tlas;
 
-  out.layered = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
-    return m.clearcoat > 0.0f || std::max({m.sheenColor.x, m.sheenColor.y, m.sheenColor.z}) > 0.0f;
-  });
+  out.features.textured = !out.textures.empty();
+  for (const Material& m : scene.materials) {
+    SceneFeatures& f = out.features;
+    f.layered = f.layered || m.clearcoat > 0.0f || std::max({m.sheenColor.x, m.sheenColor.y, m.sheenColor.z}) > 0.0f;
+    f.transmissive = f.transmissive || (m.bsdf != Material::Bsdf::Lambert && m.transmission > 0.0f);
+    f.microfacet = f.microfacet || (m.bsdf != Material::Bsdf::Lambert && m.bsdf != Material::Bsdf::Unlit);
+  }
   for (const Material& material : scene.materials) {
     out.materials.push_back(
         {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),

@@ -20,6 +20,18 @@ struct GpuMeshRange {
   uint32_t triangleCount = 0;
 };
 
+// What a scene uses of the stages' code. Vulkan compiles each feature's code only into the
+// stages of scenes that have it (specialization constants, prelude_glsl.h), since lavapipe
+// pays for code that never runs (docs/performance.md); C++ and OpenCL keep all of it.
+struct SceneFeatures {
+  bool alphaTested = false;   // a triangle's material is MASK or BLEND (traverse.h)
+  bool layered = false;       // a material has a clear coat or a sheen (material.h)
+  bool textured = false;      // a material has a texture (texture.h)
+  bool transmissive = false;  // a material has transmission: glass (material.h)
+  bool microfacet = false;    // a material is glTF's BRDF, not ideal diffuse or unlit (bsdf.h)
+  bool operator==(const SceneFeatures&) const = default;
+};
+
 struct GpuScene {
   // Every bottom-level BVH (one per mesh, in mesh order) and then the top level, with
   // absolute child indices. Bottom-level leaves index `triangles`, top-level leaves `instances`.
@@ -37,12 +49,7 @@ struct GpuScene {
   // Whether any instance moves during the shutter (has motion keys): the backends then run
   // the stages built with WP_MOTION_BLUR (motion.h), else the ones without.
   bool moving() const { return instances.size() > placedInstances; }
-  // Features that cost lavapipe speed even where unused, so Vulkan compiles them only for
-  // scenes that have them (specialization constants, prelude_glsl.h). alphaTested: some
-  // triangle's material is MASK or BLEND (the traversal's alpha step, traverse.h); layered:
-  // some material has a clear coat or a sheen (material.h's layers).
-  bool alphaTested = false;
-  bool layered = false;
+  SceneFeatures features;
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
   // The light table: world-space emissive triangles (for each still mesh instance in

@@ -3,6 +3,7 @@
 #include "backend/vulkan/vulkan_backend.h"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstring>
 
@@ -205,10 +206,15 @@ VkPipeline VulkanBackend::createPipeline(const uint32_t* words, size_t bytes) {
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
-  const VkSpecializationMapEntry entries[] = {
-      {0, offsetof(SceneConstants, alphaTested), sizeof(VkBool32)},
-      {1, offsetof(SceneConstants, layered), sizeof(VkBool32)}};
-  const VkSpecializationInfo specialization{2, entries, sizeof(sceneConstants_), &sceneConstants_};
+  // The scene's features as the constants of prelude_glsl.h, in constant_id order.
+  const std::array<VkBool32, 5> constants = {sceneFeatures_.alphaTested, sceneFeatures_.layered, sceneFeatures_.textured,
+                                             sceneFeatures_.transmissive, sceneFeatures_.microfacet};
+  std::array<VkSpecializationMapEntry, constants.size()> entries;
+  for (uint32_t id = 0; id < entries.size(); ++id) {
+    entries[id] = {id, uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
+  }
+  const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants),
+                                           constants.data()};
   info.stage.pSpecializationInfo = &specialization;
   info.layout = pipelineLayout_;
   VkPipeline pipeline = VK_NULL_HANDLE;
@@ -224,9 +230,8 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   // constructor until a moving scene comes), and stages specialized to the scene's features
   // (none from the constructor) when those change; a scene like the last costs nothing.
   const bool motion = scene.moving();
-  const SceneConstants constants{scene.alphaTested ? VK_TRUE : VK_FALSE, scene.layered ? VK_TRUE : VK_FALSE};
-  const bool respecialize = !(constants == sceneConstants_);
-  sceneConstants_ = constants;
+  const bool respecialize = !(scene.features == sceneFeatures_);
+  sceneFeatures_ = scene.features;
   for (int k = 0; k < kKernelCount; ++k) {
     const SpirvCode code = spirvFor(Kernel(k), motion);
     if (respecialize || code.words != spirvFor(Kernel(k), motion_).words) {

@@ -8,6 +8,7 @@
 
 #include "backend/vulkan/vulkan_buffer.h"
 #include "backend/vulkan/vulkan_context.h"
+#include "bvh/gpu_scene.h"
 #include "render/backend.h"
 
 namespace wp {
@@ -35,13 +36,8 @@ private:
   uint64_t pathStateBytes(uint64_t maxPaths) const;
   void createLayouts();
   // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout.
-  // The specialization constants of the stages (prelude_glsl.h), in constant_id order.
-  struct SceneConstants {
-    VkBool32 alphaTested = VK_FALSE;  // WP_SCENE_ALPHA_TESTED
-    VkBool32 layered = VK_FALSE;      // WP_SCENE_LAYERED
-    bool operator==(const SceneConstants&) const = default;
-  };
-  // A compute pipeline of the SPIR-V `words`, specialized to sceneConstants_.
+  // A compute pipeline of the SPIR-V `words`, specialized to sceneFeatures_
+  // (prelude_glsl.h).
   VkPipeline createPipeline(const uint32_t* words, size_t bytes);
   void writeDescriptors();
   // A view of the whole buffer as texels of `format` (RGBA32UI or R32UI) (kept until the descriptors are rewritten).
@@ -54,7 +50,7 @@ private:
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   std::array<VkPipeline, kKernelCount> pipelines_{};
   bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
-  SceneConstants sceneConstants_;  // and specialized to these (none of the features at first)
+  SceneFeatures sceneFeatures_;  // and specialized to these (none at first)
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet descriptorSet_ = VK_NULL_HANDLE;
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
