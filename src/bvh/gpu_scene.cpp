@@ -507,20 +507,11 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
     }
   }
   out.triangleCount = out.triangles.size();
-  out.features.alphaTested = std::any_of(out.triangles.begin(), out.triangles.end(),
-                                         [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
   out.sahCost = out.triangleCount ? weightedSah / static_cast<double>(out.triangleCount) : 0.0;
 
   packSky(scene, out);
   out.bvhBuildSeconds += packInstances(scene, meshes, out).tlas;
 
-  out.features.textured = !out.textures.empty();
-  for (const Material& m : scene.materials) {
-    SceneFeatures& f = out.features;
-    f.layered = f.layered || m.clearcoat > 0.0f || std::max({m.sheenColor.x, m.sheenColor.y, m.sheenColor.z}) > 0.0f;
-    f.transmissive = f.transmissive || (m.bsdf != Material::Bsdf::Lambert && m.transmission > 0.0f);
-    f.microfacet = f.microfacet || (m.bsdf != Material::Bsdf::Lambert && m.bsdf != Material::Bsdf::Unlit);
-  }
   for (const Material& material : scene.materials) {
     out.materials.push_back(
         {glm::vec4(material.baseColor, material.alpha), glm::vec4(material.emission, material.doubleSided ? 1.0f : 0.0f),
@@ -548,6 +539,22 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
 }
 
 }  // namespace pack_detail
+
+SceneFeatures GpuScene::features() const {
+  SceneFeatures f;
+  f.alphaTested = std::any_of(triangles.begin(), triangles.end(),
+                              [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
+  f.textured = !textures.empty();
+  for (const gpu::GpuMaterial& m : materials) {
+    const uint32_t kind = m.info.x;  // WP_MATERIAL_* (layout.h)
+    const bool gltf = kind != WP_MATERIAL_LAMBERT && kind != WP_MATERIAL_UNLIT;
+    f.layered = f.layered || (gltf && (gpu::materialClearcoat(m) > 0.0f ||
+                                       gpu::maxComponent(gpu::materialSheenColor(m)) > 0.0f));
+    f.transmissive = f.transmissive || (gltf && m.surface.w > 0.0f);  // transmission
+    f.microfacet = f.microfacet || gltf;
+  }
+  return f;
+}
 
 GpuScene packScene(const Scene& scene) {
   std::vector<pack_detail::PackedMesh> meshes;

@@ -49,7 +49,9 @@ struct GpuScene {
   // Whether any instance moves during the shutter (has motion keys): the backends then run
   // the stages built with WP_MOTION_BLUR (motion.h), else the ones without.
   bool moving() const { return instances.size() > placedInstances; }
-  SceneFeatures features;
+  // What the scene uses, read from its records (so any GpuScene, packed or built by hand,
+  // gets the stages its data needs).
+  SceneFeatures features() const;
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
   // The light table: world-space emissive triangles (for each still mesh instance in

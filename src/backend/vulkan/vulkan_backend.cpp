@@ -230,8 +230,9 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   // constructor until a moving scene comes), and stages specialized to the scene's features
   // (none from the constructor) when those change; a scene like the last costs nothing.
   const bool motion = scene.moving();
-  const bool respecialize = !(scene.features == sceneFeatures_);
-  sceneFeatures_ = scene.features;
+  const SceneFeatures features = scene.features();
+  const bool respecialize = !(features == sceneFeatures_);
+  sceneFeatures_ = features;
   for (int k = 0; k < kKernelCount; ++k) {
     const SpirvCode code = spirvFor(Kernel(k), motion);
     if (respecialize || code.words != spirvFor(Kernel(k), motion_).words) {
