@@ -18,6 +18,7 @@
 #include "bvh/gpu_scene.h"
 #include "bvh/scene_update.h"
 #include "bvh/sweep_builder.h"
+#include "bvh/wide_nodes.h"
 #include "core/error.h"
 #include "shaders/common/traverse.h"
 
@@ -514,9 +515,8 @@ TEST(Traversal, EmptyAndPlaneOnlyScenes) {
   wp::GpuScene empty = wp::packScene(s);
   ASSERT_EQ(empty.nodes.size(), 1u);
   EXPECT_EQ(empty.tlasRoot, 0u);
-  EXPECT_EQ(wp::gpu::asUint(empty.nodes[0].leftMin.w), WP_INVALID);
-  EXPECT_EQ(wp::gpu::asUint(empty.nodes[0].rightMin.w), WP_INVALID);
-  EXPECT_GT(empty.nodes[0].leftMin.x, empty.nodes[0].leftMax.x);
+  EXPECT_EQ(empty.nodes[0].childIndex, glm::uvec4(WP_INVALID));
+  EXPECT_EQ(empty.nodes[0].childCount, glm::uvec4(0u));
   EXPECT_EQ(traceClosest(empty, glm::vec3(0.0f), glm::vec3(0, 0, 1), WP_FLT_MAX).instance, WP_INVALID);
   EXPECT_FALSE(traceAny(empty, glm::vec3(0.0f), glm::vec3(0, 0, 1), WP_FLT_MAX));
 
@@ -529,22 +529,87 @@ TEST(Traversal, EmptyAndPlaneOnlyScenes) {
   EXPECT_FALSE(traceAny(plane, glm::vec3(0.0f), glm::vec3(0, -1, 0), 0.5f));
 }
 
-TEST(Traversal, SingleTriangleMeshIsOneNodeWithAnEmptyRightChild) {
+TEST(Traversal, SingleTriangleMeshIsOneNodeWithThreeEmptySlots) {
   wp::Scene s;
   s.materials.resize(1);
   s.meshes.push_back(meshOf({glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, 0));
   s.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -2))});
   wp::GpuScene g = wp::packScene(s);
   const wp::gpu::BvhNode& root = g.nodes[g.meshes[0].rootNode];
-  EXPECT_EQ(wp::gpu::asUint(root.leftMin.w), 0u);
-  EXPECT_EQ(wp::gpu::asUint(root.leftMax.w), 1u);
-  EXPECT_EQ(wp::gpu::asUint(root.rightMin.w), WP_INVALID);
-  EXPECT_EQ(wp::gpu::asUint(root.rightMax.w), 0u);
-  EXPECT_GT(root.rightMin.x, root.rightMax.x);
+  EXPECT_EQ(root.childIndex, glm::uvec4(0u, WP_INVALID, WP_INVALID, WP_INVALID));
+  EXPECT_EQ(root.childCount, glm::uvec4(1u, 0u, 0u, 0u));
   Hit h = traceClosest(g, glm::vec3(0.2f, 0.2f, 0.0f), glm::vec3(0, 0, -1), WP_FLT_MAX);
   EXPECT_FLOAT_EQ(h.t, 2.0f);
   EXPECT_EQ(h.instance, 0u);
   EXPECT_EQ(h.primitive, 0u);
+}
+
+// ---- 4-wide nodes -----------------------------------------------------------------------
+
+// Boxes along the ray's axis at known entry distances, in shuffled slots: the ranks order the
+// reached ones nearest first, ties by slot, and leave out the missed box and the empty slot.
+TEST(WideBvh, ChildrenAreRankedByEntryDistance) {
+  auto boxAt = [](float z) { return Aabb{glm::vec3(-1.0f, -1.0f, z), glm::vec3(1.0f, 1.0f, z + 0.5f)}; };
+  glm::vec3 origin(0.0f), direction(0.0f, 0.0f, 1.0f);
+  glm::vec3 invDir = wp::gpu::rayInverseDirection(direction);
+  wp::gpu::BvhNode node = wp::emptyWideNode();
+  wp::setWideChild(node, 0, boxAt(5.0f), 10, 0);
+  wp::setWideChild(node, 1, boxAt(2.0f), 11, 3);
+  wp::setWideChild(node, 2, Aabb{glm::vec3(4.0f), glm::vec3(5.0f)}, 12, 0);  // off the ray
+  wp::setWideChild(node, 3, boxAt(3.0f), 13, 1);
+  wp::gpu::ChildHits c = wp::gpu::intersectChildren(node, origin, invDir, 100.0f);
+  EXPECT_EQ(c.count, 3u);
+  EXPECT_EQ(c.ranks, glm::uvec4(2, 0, 3, 1));
+  EXPECT_EQ(c.nearest, wp::gpu::packEntry(11, 3));
+  EXPECT_EQ(c.entries.w, wp::gpu::packEntry(13, 1));
+  // tMax in front of the farthest box leaves it out.
+  c = wp::gpu::intersectChildren(node, origin, invDir, 4.0f);
+  EXPECT_EQ(c.count, 2u);
+  EXPECT_GE(c.ranks.x, 2u);
+  // Equal entry distances go by slot; an empty slot is never reached, whatever its bounds.
+  wp::setWideChild(node, 2, boxAt(2.0f), 12, 0);
+  wp::setWideChild(node, 0, boxAt(2.0f), WP_INVALID, 0);
+  c = wp::gpu::intersectChildren(node, origin, invDir, 100.0f);
+  EXPECT_EQ(c.count, 3u);
+  EXPECT_EQ(c.ranks.y, 0u);
+  EXPECT_EQ(c.ranks.z, 1u);
+  EXPECT_EQ(c.ranks.w, 2u);
+  EXPECT_GE(c.ranks.x, 3u);
+}
+
+// The collapse keeps every leaf once, fills nodes while interior children are left to open,
+// and has at most half the binary tree's interior nodes.
+TEST(WideBvh, CollapseKeepsEveryLeafOnceAndFillsNodes) {
+  Rng rng(7);
+  for (const Triangles& t : {gridMesh(30), clustered(rng, 2000), randomSoup(rng, 3000)}) {
+    Prims p = primsOf(t);
+    Bvh bvh = kBinned(p, {});
+    wp::WideLayout wide = wp::collapseToWide(bvh);
+    std::vector<int> leafSeen(bvh.nodes.size(), 0);
+    size_t referenced = 0;
+    for (const wp::WideLayout::Node& node : wide.nodes) {
+      bool interiorLeft = false;
+      for (uint32_t k = 0; k < node.count; ++k) {
+        const Bvh::Node& child = bvh.nodes[node.children[k]];
+        EXPECT_EQ(child.isLeaf(), node.wide[k] == WP_INVALID);
+        if (child.isLeaf()) {
+          ++leafSeen[node.children[k]];
+        } else {
+          interiorLeft = true;
+          ++referenced;
+          ASSERT_LT(node.wide[k], wide.nodes.size());
+        }
+      }
+      EXPECT_TRUE(node.count == WP_BVH_WIDTH || !interiorLeft) << "a node with room kept an interior child";
+    }
+    EXPECT_EQ(referenced + 1, wide.nodes.size()) << "every wide node but the root is some node's child";
+    size_t interior = 0;
+    for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+      EXPECT_EQ(leafSeen[i], bvh.nodes[i].isLeaf() ? 1 : 0) << "binary node " << i;
+      interior += !bvh.nodes[i].isLeaf();
+    }
+    EXPECT_LE(wide.nodes.size(), interior / 2 + 1);
+  }
 }
 
 TEST(PackScene, GpuNodesCoverEveryTriangleOnceWithinChildBounds) {
@@ -558,9 +623,10 @@ TEST(PackScene, GpuNodesCoverEveryTriangleOnceWithinChildBounds) {
     while (!stack.empty()) {
       const wp::gpu::BvhNode& n = g.nodes.at(stack.back());
       stack.pop_back();
-      glm::vec4 mins[2] = {n.leftMin, n.rightMin}, maxs[2] = {n.leftMax, n.rightMax};
-      for (int c = 0; c < 2; ++c) {
-        uint32_t index = wp::gpu::asUint(mins[c].w), count = wp::gpu::asUint(maxs[c].w);
+      for (int c = 0; c < 4; ++c) {
+        uint32_t index = n.childIndex[c], count = n.childCount[c];
+        glm::vec3 childMin(n.childMinX[c], n.childMinY[c], n.childMinZ[c]);
+        glm::vec3 childMax(n.childMaxX[c], n.childMaxY[c], n.childMaxZ[c]);
         if (index == WP_INVALID) {
           EXPECT_EQ(count, 0u);
           continue;
@@ -577,8 +643,8 @@ TEST(PackScene, GpuNodesCoverEveryTriangleOnceWithinChildBounds) {
           const wp::gpu::GpuTriangle& tri = g.triangles[t];
           for (glm::vec3 v : {glm::vec3(tri.v0), glm::vec3(tri.v0 + tri.edge1), glm::vec3(tri.v0 + tri.edge2)}) {
             // Edges are stored relative to v0, so v0 + edge may round by an ulp.
-            EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::vec3(mins[c]) - 1e-6f, v)) &&
-                        glm::all(glm::lessThanEqual(v, glm::vec3(maxs[c]) + 1e-6f)));
+            EXPECT_TRUE(glm::all(glm::lessThanEqual(childMin - 1e-6f, v)) &&
+                        glm::all(glm::lessThanEqual(v, childMax + 1e-6f)));
           }
         }
       }

@@ -8,19 +8,6 @@ namespace {
 
 using namespace wp::gpu;
 
-TEST(RecordAccessors, BvhNodeChildren) {
-  BvhNode n = withRightChild(withLeftChild(BvhNode{}, vec3(1, 2, 3), vec3(4, 5, 6), 7u, 0u), vec3(-1, -2, -3),
-                             vec3(-4, -5, -6), 8u, 3u);
-  EXPECT_EQ(nodeLeftMin(n), vec3(1, 2, 3));
-  EXPECT_EQ(nodeLeftMax(n), vec3(4, 5, 6));
-  EXPECT_EQ(nodeLeftIndex(n), 7u);
-  EXPECT_EQ(nodeLeftCount(n), 0u);
-  EXPECT_EQ(nodeRightMin(n), vec3(-1, -2, -3));
-  EXPECT_EQ(nodeRightMax(n), vec3(-4, -5, -6));
-  EXPECT_EQ(nodeRightIndex(n), 8u);
-  EXPECT_EQ(nodeRightCount(n), 3u);
-}
-
 TEST(RecordAccessors, Triangle) {
   GpuTriangle t = makeGpuTriangle(vec3(1, 2, 3), vec3(2, 4, 6), vec3(0, 1, 5), 9u, 4u);
   EXPECT_EQ(triangleVertex0(t), vec3(1, 2, 3));

@@ -29,7 +29,7 @@
 // the texture cache.
 #define WP_BINDINGS(X)                                                            \
   X(params, 0, RenderParams, 13, NONE, UNIFORM, ALL)                              \
-  X(nodes, 1, BvhNode, 4, RECORD, TEXELS, ALL)                                    \
+  X(nodes, 1, BvhNode, 8, RECORD, TEXELS, ALL)                                    \
   X(triangles, 2, GpuTriangle, 4, RECORD, TEXELS, ALL)                            \
   X(instances, 3, GpuInstance, 4, RECORD, TEXELS, ALL)                            \
   X(planes, 4, GpuPlane, 2, RECORD, TEXELS, ALL)                                  \

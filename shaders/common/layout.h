@@ -33,40 +33,24 @@ WP_BEGIN
 
 #define WP_INVALID 0xffffffffu
 
-// BVH node with the bounds of both children (Aila & Laine layout), 64 bytes. A child with
-// count 0 is an interior node whose index is `index`; a child with count > 0 is a leaf
-// holding primitives [index, index + count). An empty child has min > max and count 0 and
-// index WP_INVALID. Bottom-level leaves hold triangles, the top level holds instances.
-//   leftMin: xyz: bounds min; w: asFloat(left index)
-//   leftMax: xyz: bounds max; w: asFloat(left count)
-//   rightMin: xyz; w: asFloat(right index)
-//   rightMax: xyz; w: asFloat(right count)
+// 4-wide BVH node, 128 bytes: the bounds of up to four children, one vec4 per axis bound with
+// a child in each component (x: child 0 ... w: child 3), so one vec4 operation tests an axis
+// for all four children (SIMD on CPUs, where PoCL runs a work-item as scalar code), then the
+// children's indices and leaf counts. A child with count 0 is an interior node at `index`; a
+// child with count > 0 is a leaf holding primitives [index, index + count); an empty slot has
+// index WP_INVALID and count 0 (its bounds are never read). Bottom-level leaves hold
+// triangles, top-level leaves instances.
 #define WP_FIELDS_BvhNode(F) \
-  F(vec4, leftMin)           \
-  F(vec4, leftMax)           \
-  F(vec4, rightMin)          \
-  F(vec4, rightMax)
+  F(vec4, childMinX)         \
+  F(vec4, childMaxX)         \
+  F(vec4, childMinY)         \
+  F(vec4, childMaxY)         \
+  F(vec4, childMinZ)         \
+  F(vec4, childMaxZ)         \
+  F(uvec4, childIndex)       \
+  F(uvec4, childCount)
 WP_RECORD(BvhNode)
-WP_FN vec3 nodeLeftMin(BvhNode n) { return make_vec3(n.leftMin.x, n.leftMin.y, n.leftMin.z); }
-WP_FN vec3 nodeLeftMax(BvhNode n) { return make_vec3(n.leftMax.x, n.leftMax.y, n.leftMax.z); }
-WP_FN uint nodeLeftIndex(BvhNode n) { return asUint(n.leftMin.w); }
-WP_FN uint nodeLeftCount(BvhNode n) { return asUint(n.leftMax.w); }
-WP_FN vec3 nodeRightMin(BvhNode n) { return make_vec3(n.rightMin.x, n.rightMin.y, n.rightMin.z); }
-WP_FN vec3 nodeRightMax(BvhNode n) { return make_vec3(n.rightMax.x, n.rightMax.y, n.rightMax.z); }
-WP_FN uint nodeRightIndex(BvhNode n) { return asUint(n.rightMin.w); }
-WP_FN uint nodeRightCount(BvhNode n) { return asUint(n.rightMax.w); }
-// The node with its left (right) child set: the child's bounds, and a node index with
-// count 0, or a leaf's first primitive and count (an empty child: min > max, WP_INVALID, 0).
-WP_FN BvhNode withLeftChild(BvhNode n, vec3 boundsMin, vec3 boundsMax, uint index, uint count) {
-  n.leftMin = make_vec4(boundsMin.x, boundsMin.y, boundsMin.z, asFloat(index));
-  n.leftMax = make_vec4(boundsMax.x, boundsMax.y, boundsMax.z, asFloat(count));
-  return n;
-}
-WP_FN BvhNode withRightChild(BvhNode n, vec3 boundsMin, vec3 boundsMax, uint index, uint count) {
-  n.rightMin = make_vec4(boundsMin.x, boundsMin.y, boundsMin.z, asFloat(index));
-  n.rightMax = make_vec4(boundsMax.x, boundsMax.y, boundsMax.z, asFloat(count));
-  return n;
-}
+#define WP_BVH_WIDTH 4u
 
 // Triangle in object space, stored in BVH leaf order: 64 bytes.
 //   v0: xyz: vertex 0; w: 1 if its material's alphaMode is MASK or BLEND (the traversal then

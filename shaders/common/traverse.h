@@ -9,11 +9,12 @@
 #include "intersect.h"
 #include "motion.h"
 
-// Each level is built no deeper than WP_BVH_MAX_DEPTH, and its traversal pushes at most one
-// entry per level it descends (plus two while a bottom-level lane holds a postponed leaf),
-// so a stack of this size serves either level.
+// Each level is built no deeper than WP_BVH_MAX_DEPTH binary levels, so its 4-wide nodes
+// (each at least one binary level below its parent) are no deeper either. A node visit pushes
+// at most three children, and a bottom-level lane that already holds a postponed leaf keeps
+// two more entries for later, so a stack of this size serves either level.
 #define WP_BVH_MAX_DEPTH 32u
-#define WP_LEVEL_STACK_SIZE 34u
+#define WP_LEVEL_STACK_SIZE (3u * WP_BVH_MAX_DEPTH + 2u)
 // Bottom-level leaves hold at most this many triangles (the packer builds them so), which
 // lets the traversal test a leaf with a loop of fixed length.
 #define WP_MAX_LEAF_TRIANGLES 4u
@@ -34,39 +35,89 @@ WP_STRUCT(Hit)
   bool alphaTested;  // the triangle's material is MASK or BLEND (read where primitive is valid)
 WP_STRUCT_END(Hit)
 
-// The children of a node that the ray reaches before tMax, the nearer one first.
-WP_STRUCT(ChildHits)
-  uvec4 children;  // read by the accessors below (one vector: PoCL selects it in one go)
-  uint count;      // children reached: 0, 1 or 2
-WP_STRUCT_END(ChildHits)
-// The index of the first and second child reached, and their leaf counts (0: interior node).
-WP_FN uint nearChild(ChildHits c) { return c.children.x; }
-WP_FN uint farChild(ChildHits c) { return c.children.y; }
-WP_FN uint nearChildCount(ChildHits c) { return c.children.z; }
-WP_FN uint farChildCount(ChildHits c) { return c.children.w; }
-
-WP_FN ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
-  vec2 l = intersectAabb(nodeLeftMin(node), nodeLeftMax(node), origin, invDir, tMax);
-  vec2 r = intersectAabb(nodeRightMin(node), nodeRightMax(node), origin, invDir, tMax);
-  uint leftIndex = nodeLeftIndex(node);
-  uint rightIndex = nodeRightIndex(node);
-  // Empty children are recognised by their index: the slab test would see their inverted
-  // boxes as huge ones.
-  bool hitLeft = l.x <= l.y && leftIndex != WP_INVALID;
-  bool hitRight = r.x <= r.y && rightIndex != WP_INVALID;
-  bool rightFirst = hitRight && (!hitLeft || r.x < l.x);
-  ChildHits c;
-  c.children = rightFirst
-      ? make_uvec4(rightIndex, leftIndex, nodeRightCount(node), nodeLeftCount(node))
-      : make_uvec4(leftIndex, rightIndex, nodeLeftCount(node), nodeRightCount(node));
-  c.count = (hitLeft ? 1u : 0u) + (hitRight ? 1u : 0u);
-  return c;
-}
-
 // A traversal stack entry: a node (count 0) or a leaf of `count` primitives at `index`.
 WP_FN uint packEntry(uint index, uint count) { return index | (count << WP_ENTRY_COUNT_SHIFT); }
 WP_FN uint entryIndex(uint entry) { return entry & WP_ENTRY_INDEX_MASK; }
 WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
+
+// The children of a node that a ray reaches before tMax, ranked by the distance at which it
+// enters them.
+WP_STRUCT(ChildHits)
+  uvec4 entries;  // each slot's stack entry (packEntry)
+  // Each slot's place in the order of entry distance, nearest first: the reached children
+  // take ranks 0 .. count - 1, the missed and empty slots the ranks after them.
+  uvec4 ranks;
+  uint count;    // children reached: 0 to 4
+  uint nearest;  // the entry of the child of rank 0 (when count > 0)
+WP_STRUCT_END(ChildHits)
+
+// Rank of the slot of key `key` among the other three slots' keys a, b, c (given in slot
+// order): the number of them that come first, by a smaller key or, on a tie, by a lower slot.
+// The first `lowerSlots` of a, b, c are the slots below this one.
+WP_FN_INLINED uint rankAmong(float key, float a, float b, float c, uint lowerSlots) {
+  return (a < key || (a == key && 0u < lowerSlots) ? 1u : 0u) + (b < key || (b == key && 1u < lowerSlots) ? 1u : 0u) +
+         (c < key || (c == key && 2u < lowerSlots) ? 1u : 0u);
+}
+
+// The slab test of all four children at once (intersect.h's intersectAabb, one vec4 per
+// axis), then their ranks. Ranking instead of sorting keeps it free of branches: each lane
+// writes the far children straight to their stack places (traceScene, traceBottomLevel).
+WP_FN_INLINED ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
+  vec4 x0 = (node.childMinX - origin.x) * invDir.x;
+  vec4 x1 = (node.childMaxX - origin.x) * invDir.x;
+  vec4 y0 = (node.childMinY - origin.y) * invDir.y;
+  vec4 y1 = (node.childMaxY - origin.y) * invDir.y;
+  vec4 z0 = (node.childMinZ - origin.z) * invDir.z;
+  vec4 z1 = (node.childMaxZ - origin.z) * invDir.z;
+  vec4 entry = max(max(min(x0, x1), min(y0, y1)), max(min(z0, z1), make_vec4(0.0f, 0.0f, 0.0f, 0.0f)));
+  vec4 exit = min(min(max(x0, x1), max(y0, y1)), min(max(z0, z1), make_vec4(tMax, tMax, tMax, tMax))) *
+              WP_SLAB_PADDING;
+  // Empty slots are recognised by their index: the slab test would see their boxes as any.
+  uvec4 index = node.childIndex;
+  bool reached0 = entry.x <= exit.x && index.x != WP_INVALID;
+  bool reached1 = entry.y <= exit.y && index.y != WP_INVALID;
+  bool reached2 = entry.z <= exit.z && index.z != WP_INVALID;
+  bool reached3 = entry.w <= exit.w && index.w != WP_INVALID;
+  // Missed slots sort after every reached one: a reached child's entry is at most tMax.
+  float k0 = reached0 ? entry.x : WP_FLT_MAX;
+  float k1 = reached1 ? entry.y : WP_FLT_MAX;
+  float k2 = reached2 ? entry.z : WP_FLT_MAX;
+  float k3 = reached3 ? entry.w : WP_FLT_MAX;
+  ChildHits c;
+  c.entries = make_uvec4(packEntry(index.x, node.childCount.x), packEntry(index.y, node.childCount.y),
+                         packEntry(index.z, node.childCount.z), packEntry(index.w, node.childCount.w));
+  c.ranks = make_uvec4(rankAmong(k0, k1, k2, k3, 0u), rankAmong(k1, k0, k2, k3, 1u),
+                       rankAmong(k2, k0, k1, k3, 2u), rankAmong(k3, k0, k1, k2, 3u));
+  c.count = (reached0 ? 1u : 0u) + (reached1 ? 1u : 0u) + (reached2 ? 1u : 0u) + (reached3 ? 1u : 0u);
+  c.nearest = c.ranks.x == 0u ? c.entries.x
+              : c.ranks.y == 0u ? c.entries.y
+              : c.ranks.z == 0u ? c.entries.z
+                                : c.entries.w;
+  return c;
+}
+
+// Pushes the children of `hits` that are reached but not nearest onto `stack` at `sp`, the
+// farthest deepest so the nearer ones pop first, and advances sp past them. A macro, not a
+// function: GLSL would copy the whole stack in and out of a call.
+#define WP_PUSH_FAR_CHILDREN(stack, sp, hits)                        \
+  {                                                                  \
+    uint top_ = (sp) + (hits).count - 1u;                            \
+    if ((hits).ranks.x > 0u && (hits).ranks.x < (hits).count) {      \
+      stack[top_ - (hits).ranks.x] = (hits).entries.x;               \
+    }                                                                \
+    if ((hits).ranks.y > 0u && (hits).ranks.y < (hits).count) {      \
+      stack[top_ - (hits).ranks.y] = (hits).entries.y;               \
+    }                                                                \
+    if ((hits).ranks.z > 0u && (hits).ranks.z < (hits).count) {      \
+      stack[top_ - (hits).ranks.z] = (hits).entries.z;               \
+    }                                                                \
+    if ((hits).ranks.w > 0u && (hits).ranks.w < (hits).count) {      \
+      stack[top_ - (hits).ranks.w] = (hits).entries.w;               \
+    }                                                                \
+    if ((hits).count > 1u) {                                         \
+      (sp) += (hits).count - 1u;                                     \
+    }                                                                \
+  }
 
 // The planes that `hit` does not already hide, nearest first found; with anyHit it returns at
 // the first.
@@ -88,7 +139,7 @@ WP_FN Hit intersectPlanes(WP_BUFFERS uint planeCount, vec3 origin, vec3 directio
 // The triangles of a bottom-level leaf entry of `instance`, with the ray in object space: a
 // loop of fixed length WP_MAX_LEAF_TRIANGLES that the compiler unrolls (the slots past the
 // leaf's count test its first triangle again and are ignored).
-WP_FN Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit hit) {
+WP_FN_INLINED Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit hit) {
   uint first = entryIndex(leaf);
   uint count = entryCount(leaf);
   for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
@@ -119,20 +170,16 @@ WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, 
   for (;;) {
     while (node != WP_INVALID) {
       ChildHits b = intersectChildren(WP_LOAD(nodes, node), o, invDir, hit.t);
-      uint nearEntry = packEntry(nearChild(b), nearChildCount(b));
-      if (b.count == 2u) {
-        stack[sp] = packEntry(farChild(b), farChildCount(b));
-        ++sp;
-      }
+      WP_PUSH_FAR_CHILDREN(stack, sp, b)
       node = WP_INVALID;
-      if (b.count > 0u && nearChildCount(b) == 0u) {
-        node = nearChild(b);
+      if (b.count > 0u && entryCount(b.nearest) == 0u) {
+        node = b.nearest;
       } else {
         if (b.count > 0u && leaf == WP_INVALID) {
-          leaf = nearEntry;
+          leaf = b.nearest;
         } else if (b.count > 0u) {
           // This lane already holds a leaf (it waits for the others): keep the new one.
-          stack[sp] = nearEntry;
+          stack[sp] = b.nearest;
           ++sp;
         }
         if (sp > 0u) {
@@ -196,8 +243,8 @@ WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, floa
 // Nearest hit at 0 < t < tMax, or with anyHit the first one found, with moving instances
 // placed at normalized shutter time `time` (motion.h): the planes, then the top level.
 //
-// Each level is one flat loop over stack entries. An iteration either tests a node's two
-// children (the nearer becomes the next entry, the farther is pushed) or intersects one leaf
+// Each level is one flat loop over stack entries. An iteration either tests a node's four
+// children (the nearest reached becomes the next entry, the others are pushed) or intersects one leaf
 // (for the top level an instance, intersectInstance; for a bottom level a few triangles,
 // intersectLeaf). Flat loops matter on SIMD implementations that run divergent branches
 // under masks (lavapipe, and GPUs): nested loops per child and per leaf made every lane pay
@@ -222,12 +269,9 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
   for (;;) {
     if (entryCount(entry) == 0u) {
       ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
-      if (c.count == 2u) {
-        stack[sp] = packEntry(farChild(c), farChildCount(c));
-        ++sp;
-      }
+      WP_PUSH_FAR_CHILDREN(stack, sp, c)
       if (c.count > 0u) {
-        entry = packEntry(nearChild(c), nearChildCount(c));
+        entry = c.nearest;
         continue;
       }
     } else {

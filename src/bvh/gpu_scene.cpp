@@ -25,9 +25,10 @@
 namespace wp {
 namespace {
 
-// A path down a level, plus the two entries a bottom-level visit may push while its lane
-// holds a postponed leaf.
-static_assert(WP_BVH_MAX_DEPTH + 2 <= WP_LEVEL_STACK_SIZE, "a traversal stack must hold a path down its level");
+// Three far children per wide level down (wide levels are no deeper than binary ones), plus
+// the two entries a bottom-level lane keeps while it holds a postponed leaf.
+static_assert((WP_BVH_WIDTH - 1) * WP_BVH_MAX_DEPTH + 2 <= WP_LEVEL_STACK_SIZE,
+              "a traversal stack must hold the far children of a path down its level");
 
 constexpr uint32_t kMeshLeafSize = WP_MAX_LEAF_TRIANGLES;
 // One instance per top-level leaf: an instance test (transform plus a whole bottom-level
@@ -334,48 +335,6 @@ Bvh buildMeshBvh(const MeshPrimitives& prims) {
   return buildBvh(prims.bounds, prims.centroids, options);
 }
 
-uint32_t gpuNodeCount(const Bvh& bvh) {
-  // A binary tree of n nodes has (n - 1) / 2 interior ones; leaves live in their parent.
-  return bvh.nodes.size() <= 1 ? 1u : static_cast<uint32_t>((bvh.nodes.size() - 1) / 2);
-}
-
-void writeNodes(const Bvh& bvh, uint32_t primBase, uint32_t base, std::vector<gpu::BvhNode>& out) {
-  if (bvh.nodes.size() <= 1) {
-    gpu::BvhNode& node = out[base];
-    const Aabb empty;  // min > max
-    if (bvh.nodes.empty()) {
-      node = gpu::withLeftChild(node, empty.min, empty.max, WP_INVALID, 0);
-    } else {
-      const Bvh::Node& leaf = bvh.nodes[0];
-      node = gpu::withLeftChild(node, leaf.bounds.min, leaf.bounds.max, primBase + leaf.index, leaf.count);
-    }
-    node = gpu::withRightChild(node, empty.min, empty.max, WP_INVALID, 0);
-    return;
-  }
-  std::vector<uint32_t> gpuIndex(bvh.nodes.size(), WP_INVALID);
-  uint32_t interiorCount = 0;
-  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
-    if (!bvh.nodes[i].isLeaf()) {
-      gpuIndex[i] = base + interiorCount++;
-    }
-  }
-  auto childIndex = [&](uint32_t c) {
-    const Bvh::Node& child = bvh.nodes[c];
-    return child.isLeaf() ? primBase + child.index : gpuIndex[c];
-  };
-  for (size_t i = 0; i < bvh.nodes.size(); ++i) {
-    const Bvh::Node& n = bvh.nodes[i];
-    if (n.isLeaf()) {
-      continue;
-    }
-    gpu::BvhNode& g = out[gpuIndex[i]];
-    const Bvh::Node& left = bvh.nodes[n.index];
-    const Bvh::Node& right = bvh.nodes[n.index + 1];
-    g = gpu::withLeftChild(g, left.bounds.min, left.bounds.max, childIndex(n.index), left.count);
-    g = gpu::withRightChild(g, right.bounds.min, right.bounds.max, childIndex(n.index + 1), right.count);
-  }
-}
-
 void writeTriangles(const Scene& scene, const Mesh& mesh, const Bvh& bvh, MeshPrimitives& prims,
                     uint32_t firstTriangle, GpuScene& out) {
   for (size_t i = 0; i < bvh.primIndices.size(); ++i) {
@@ -433,8 +392,8 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
   options.maxDepth = WP_BVH_MAX_DEPTH;
   Bvh tlas = buildBvh(candidates.worldBounds, centers, options);
   out.tlasRoot = static_cast<uint32_t>(out.nodes.size());
-  out.nodes.resize(out.nodes.size() + gpuNodeCount(tlas));
-  writeNodes(tlas, 0, out.tlasRoot, out.nodes);
+  std::vector<gpu::BvhNode> tlasNodes = wideNodes(tlas, collapseToWide(tlas), 0, out.tlasRoot);
+  out.nodes.insert(out.nodes.end(), tlasNodes.begin(), tlasNodes.end());
   time.tlas = seconds(start);
 
   // Instances in top-level leaf order, each still mesh instance followed by its block of
@@ -496,14 +455,16 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
     range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
     range.triangleCount = static_cast<uint32_t>(mesh.triangleCount());
     range.rootNode = static_cast<uint32_t>(out.nodes.size());
-    out.nodes.resize(out.nodes.size() + gpuNodeCount(bvh));
-    writeNodes(bvh, range.firstTriangle, range.rootNode, out.nodes);
+    WideLayout wide = collapseToWide(bvh);
+    std::vector<gpu::BvhNode> nodes = wideNodes(bvh, wide, range.firstTriangle, range.rootNode);
+    out.nodes.insert(out.nodes.end(), nodes.begin(), nodes.end());
     out.triangles.resize(out.triangles.size() + range.triangleCount);
     out.triangleShading.resize(out.triangles.size());
     writeTriangles(scene, mesh, bvh, prims, range.firstTriangle, out);
     packed.emitters = std::move(prims.emitters);
     if (mesh.deforming) {
       packed.bvh = std::move(bvh);
+      packed.wide = std::move(wide);
     }
   }
   out.triangleCount = out.triangles.size();

@@ -8,6 +8,7 @@
 
 #include "bvh/bvh_builder.h"
 #include "bvh/gpu_scene.h"
+#include "bvh/wide_nodes.h"
 
 namespace wp::pack_detail {
 
@@ -32,6 +33,7 @@ struct PackedMesh {
   std::vector<Emitter> emitters;  // as in MeshPrimitives, after writeTriangles
   float sah = 0.0f;                // sahCost of its bottom level
   Bvh bvh;  // kept by packSceneParts for deforming meshes only (refitted per frame)
+  WideLayout wide;  // the GPU nodes' shape over bvh, kept with it
 };
 
 // Requires valid material indices (as packScene).
@@ -39,14 +41,6 @@ MeshPrimitives meshPrimitives(const Scene& scene, const Mesh& mesh);
 
 // The bottom-level build: leaves of at most WP_MAX_LEAF_TRIANGLES, depth WP_BVH_MAX_DEPTH.
 Bvh buildMeshBvh(const MeshPrimitives& prims);
-
-// GPU nodes that writeNodes fills for `bvh`: its interior nodes, or one for a single leaf
-// (or none).
-uint32_t gpuNodeCount(const Bvh& bvh);
-
-// Writes `bvh` in the GPU layout to out[base, base + gpuNodeCount(bvh)), leaf ranges offset
-// by primBase and child indices absolute. Requires out.size() >= base + gpuNodeCount(bvh).
-void writeNodes(const Bvh& bvh, uint32_t primBase, uint32_t base, std::vector<gpu::BvhNode>& out);
 
 // Writes the triangle and shading records of `mesh` (of `scene`) in the leaf order of `bvh`
 // (built over prims of this mesh) to out.triangles and out.triangleShading from firstTriangle

@@ -2,6 +2,7 @@
 // fresh top level and light table.
 #include "bvh/scene_update.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -83,7 +84,8 @@ const GpuScene& SceneUpdater::update(const Scene& posed) {
     const GpuMeshRange& range = gpu_.meshes[m];
     auto start = Clock::now();
     pack_detail::MeshPrimitives prims = pack_detail::meshPrimitives(posed, mesh);
-    uint32_t nodeCount = pack_detail::gpuNodeCount(packed.bvh);
+    // The mesh's old block of nodes ends where the next block (or the top level) starts.
+    const uint32_t blockEnd = m + 1 < gpu_.meshes.size() ? gpu_.meshes[m + 1].rootNode : gpu_.tlasRoot;
     refitBvh(packed.bvh, prims.bounds);
     packed.sah = sahCost(packed.bvh);
     ++times_.refits;
@@ -92,14 +94,16 @@ const GpuScene& SceneUpdater::update(const Scene& posed) {
       start = Clock::now();
       packed.bvh = pack_detail::buildMeshBvh(prims);
       packed.sah = builtSah_[m] = sahCost(packed.bvh);
+      packed.wide = collapseToWide(packed.bvh);
       ++times_.rebuilds;
       times_.rebuildMs += millisecondsSince(start);
     }
     packed.bounds = packed.bvh.nodes[0].bounds;
 
     start = Clock::now();
-    if (pack_detail::gpuNodeCount(packed.bvh) == nodeCount) {
-      pack_detail::writeNodes(packed.bvh, range.firstTriangle, range.rootNode, gpu_.nodes);
+    std::vector<gpu::BvhNode> nodes = wideNodes(packed.bvh, packed.wide, range.firstTriangle, range.rootNode);
+    if (nodes.size() == blockEnd - range.rootNode) {
+      std::copy(nodes.begin(), nodes.end(), gpu_.nodes.begin() + range.rootNode);
     } else {
       relayout = true;
     }
@@ -141,21 +145,18 @@ void SceneUpdater::relayoutNodes() {
     GpuMeshRange& range = gpu_.meshes[m];
     range.rootNode = static_cast<uint32_t>(nodes.size());
     if (deforming_[m] && range.triangleCount > 0) {
-      nodes.resize(nodes.size() + pack_detail::gpuNodeCount(meshes_[m].bvh));
-      pack_detail::writeNodes(meshes_[m].bvh, range.firstTriangle, range.rootNode, nodes);
+      std::vector<gpu::BvhNode> rebuilt = wideNodes(meshes_[m].bvh, meshes_[m].wide, range.firstTriangle, range.rootNode);
+      nodes.insert(nodes.end(), rebuilt.begin(), rebuilt.end());
       continue;
     }
     // Interior child indices are absolute, so they move with the block.
     uint32_t shift = range.rootNode - oldRoot[m];
     for (uint32_t i = oldRoot[m]; i < oldRoot[m + 1]; ++i) {
       gpu::BvhNode node = gpu_.nodes[i];
-      if (gpu::nodeLeftCount(node) == 0 && gpu::nodeLeftIndex(node) != WP_INVALID) {
-        node = gpu::withLeftChild(node, gpu::nodeLeftMin(node), gpu::nodeLeftMax(node),
-                                  gpu::nodeLeftIndex(node) + shift, 0);
-      }
-      if (gpu::nodeRightCount(node) == 0 && gpu::nodeRightIndex(node) != WP_INVALID) {
-        node = gpu::withRightChild(node, gpu::nodeRightMin(node), gpu::nodeRightMax(node),
-                                   gpu::nodeRightIndex(node) + shift, 0);
+      for (uint32_t slot = 0; slot < WP_BVH_WIDTH; ++slot) {
+        if (node.childCount[slot] == 0 && node.childIndex[slot] != WP_INVALID) {
+          node.childIndex[slot] += shift;
+        }
       }
       nodes.push_back(node);
     }

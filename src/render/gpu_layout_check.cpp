@@ -8,7 +8,7 @@
 
 namespace wp::gpu {
 
-static_assert(sizeof(BvhNode) == 64);
+static_assert(sizeof(BvhNode) == 128);
 static_assert(sizeof(GpuTriangle) == 64);
 static_assert(sizeof(GpuTriangleShading) == 160);
 static_assert(sizeof(GpuTexture) == 48);
