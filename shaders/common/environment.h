@@ -77,7 +77,13 @@ WP_FN uint environmentTexel(GpuEnvironment env, vec2 uv) {
 
 // Sky radiance seen along `direction` (unit), intensity included: the nearest texel.
 WP_FN vec3 environmentRadiance(WP_BUFFERS GpuEnvironment env, vec3 direction) {
-  vec4 texel = WP_LOAD(skyRadiance, environmentTexel(env, environmentUv(env, direction)));
+  // A uniform sky (the default white one, --sky-color, or none: one texel) needs no map
+  // coordinates, which cost two arctangents (slow in PoCL's math library).
+  uint index = 0u;
+  if (env.width * env.height > 1u) {
+    index = environmentTexel(env, environmentUv(env, direction));
+  }
+  vec4 texel = WP_LOAD(skyRadiance, index);
   return make_vec3(texel.x, texel.y, texel.z) * env.intensity;
 }
 
