@@ -311,26 +311,29 @@ TEST(Intersect, TriangleBothFacesAndEdges) {
 }
 
 TEST(Intersect, PlaneAndSlabs) {
-  using wp::gpu::intersectAabb;
   using wp::gpu::intersectPlane;
   using wp::gpu::rayInverseDirection;
   glm::vec3 up(0, 1, 0);
   EXPECT_FLOAT_EQ(intersectPlane(up, -1.0f, glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), kInf), 2.0f);
   EXPECT_EQ(intersectPlane(up, -1.0f, glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), kInf), kInf);
   EXPECT_EQ(intersectPlane(up, 1.0f, glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), 3.0f), 3.0f);
-  // Zero direction components: inside the slab on those axes is a hit, outside a miss, no NaN.
-  glm::vec3 lo(-1.0f), hi(1.0f);
+  // The slab test (a wide node's, with the box in slot 0). Zero direction components: inside
+  // the slab on those axes is a hit, outside a miss, no NaN.
+  auto reaches = [](const Aabb& box, glm::vec3 origin, glm::vec3 invDir, float tMax) {
+    wp::gpu::BvhNode node = wp::emptyWideNode();
+    wp::setWideChild(node, 0, box, 0, 1);
+    return wp::gpu::intersectChildren(node, origin, invDir, tMax).count == 1u;
+  };
+  Aabb box{glm::vec3(-1.0f), glm::vec3(1.0f)};
   glm::vec3 inv = rayInverseDirection(glm::vec3(0.0f, 0.0f, 1.0f));
   EXPECT_TRUE(std::isfinite(inv.x) && std::isfinite(inv.y));
-  glm::vec2 hit = intersectAabb(lo, hi, glm::vec3(0.5f, -0.5f, -5.0f), inv, kInf);
-  EXPECT_LE(hit.x, hit.y);
-  EXPECT_NEAR(hit.x, 4.0f, 1e-5f);
-  glm::vec2 miss = intersectAabb(lo, hi, glm::vec3(1.5f, 0.0f, -5.0f), inv, kInf);
-  EXPECT_GT(miss.x, miss.y);
-  glm::vec2 cut = intersectAabb(lo, hi, glm::vec3(0.0f, 0.0f, -5.0f), inv, 3.0f);
-  EXPECT_GT(cut.x, cut.y) << "the box lies beyond tMax";
-  glm::vec2 behind = intersectAabb(lo, hi, glm::vec3(0.0f, 0.0f, 5.0f), inv, kInf);
-  EXPECT_GT(behind.x, behind.y);
+  EXPECT_TRUE(reaches(box, glm::vec3(0.5f, -0.5f, -5.0f), inv, kInf));
+  // Entered at t = 4: reached with tMax just past 4, not with tMax just short of it.
+  EXPECT_TRUE(reaches(box, glm::vec3(0.5f, -0.5f, -5.0f), inv, 4.0001f));
+  EXPECT_FALSE(reaches(box, glm::vec3(0.5f, -0.5f, -5.0f), inv, 3.999f));
+  EXPECT_FALSE(reaches(box, glm::vec3(1.5f, 0.0f, -5.0f), inv, kInf));
+  EXPECT_FALSE(reaches(box, glm::vec3(0.0f, 0.0f, -5.0f), inv, 3.0f)) << "the box lies beyond tMax";
+  EXPECT_FALSE(reaches(box, glm::vec3(0.0f, 0.0f, 5.0f), inv, kInf)) << "the box lies behind the origin";
 }
 
 // ---- packed scenes: traversal against brute force ---------------------------------------

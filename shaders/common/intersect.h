@@ -19,23 +19,9 @@ WP_FN float slabInverse(float d) {
   return 1.0f / (fabs(d) > WP_TINY_DIRECTION ? d : (d < 0.0f ? -WP_TINY_DIRECTION : WP_TINY_DIRECTION));
 }
 
-// Componentwise 1 / direction for intersectAabb, finite for every direction.
+// Componentwise 1 / direction for the slab test (traverse.h), finite for every direction.
 WP_FN vec3 rayInverseDirection(vec3 direction) {
   return make_vec3(slabInverse(direction.x), slabInverse(direction.y), slabInverse(direction.z));
-}
-
-// Slab test of origin + t * direction, t in [0, tMax], against the box [boxMin, boxMax],
-// with invDir = rayInverseDirection(direction). Returns (entry, exit); the ray reaches the
-// box iff entry <= exit. Requires boxMin <= boxMax: an inverted box is treated like its
-// swapped twin, so callers skip empty boxes themselves.
-WP_FN vec2 intersectAabb(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 invDir, float tMax) {
-  vec3 t0 = (boxMin - origin) * invDir;
-  vec3 t1 = (boxMax - origin) * invDir;
-  vec3 tNear = min(t0, t1);
-  vec3 tFar = max(t0, t1);
-  float tEntry = max(max(tNear.x, tNear.y), max(tNear.z, 0.0f));
-  float tExit = min(min(tFar.x, tFar.y), min(tFar.z, tMax)) * WP_SLAB_PADDING;
-  return make_vec2(tEntry, tExit);
 }
 
 // Moller-Trumbore ray/triangle test, both faces, with the division deferred to the hit.

@@ -59,8 +59,9 @@ WP_FN_INLINED uint rankAmong(float key, float a, float b, float c, uint lowerSlo
          (c < key || (c == key && 2u < lowerSlots) ? 1u : 0u);
 }
 
-// The slab test of all four children at once (intersect.h's intersectAabb, one vec4 per
-// axis), then their ranks. Ranking instead of sorting keeps it free of branches: each lane
+// The slab test of all four children at once, one vec4 per axis: a child is reached when
+// the ray (invDir = rayInverseDirection(direction)) enters its box at some t in [0, tMax];
+// then their ranks. Ranking instead of sorting keeps it free of branches: each lane
 // writes the far children straight to their stack places (traceScene, traceBottomLevel).
 WP_FN_INLINED ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
   vec4 x0 = (node.childMinX - origin.x) * invDir.x;

@@ -84,8 +84,7 @@ const GpuScene& SceneUpdater::update(const Scene& posed) {
     const GpuMeshRange& range = gpu_.meshes[m];
     auto start = Clock::now();
     pack_detail::MeshPrimitives prims = pack_detail::meshPrimitives(posed, mesh);
-    // The mesh's old block of nodes ends where the next block (or the top level) starts.
-    const uint32_t blockEnd = m + 1 < gpu_.meshes.size() ? gpu_.meshes[m + 1].rootNode : gpu_.tlasRoot;
+    const uint32_t blockEnd = nodeBlockEnd(m);
     refitBvh(packed.bvh, prims.bounds);
     packed.sah = sahCost(packed.bvh);
     ++times_.refits;
@@ -132,17 +131,18 @@ const GpuScene& SceneUpdater::update(const Scene& posed) {
   return gpu_;
 }
 
+uint32_t SceneUpdater::nodeBlockEnd(size_t m) const {
+  return m + 1 < gpu_.meshes.size() ? gpu_.meshes[m + 1].rootNode : gpu_.tlasRoot;
+}
+
 void SceneUpdater::relayoutNodes() {
-  // Bottom levels lie in mesh order, the top level (already cut off) after them, so each
-  // mesh's old block ends where the next one's starts.
-  std::vector<uint32_t> oldRoot;
-  for (const GpuMeshRange& range : gpu_.meshes) {
-    oldRoot.push_back(range.rootNode);
-  }
-  oldRoot.push_back(gpu_.tlasRoot);
+  // Each mesh's old block is read before its root moves, and the blocks after it (and the
+  // top level's start, already cut off) move only later.
   std::vector<gpu::BvhNode> nodes;
   for (size_t m = 0; m < gpu_.meshes.size(); ++m) {
     GpuMeshRange& range = gpu_.meshes[m];
+    const uint32_t oldStart = range.rootNode;
+    const uint32_t oldEnd = nodeBlockEnd(m);
     range.rootNode = static_cast<uint32_t>(nodes.size());
     if (deforming_[m] && range.triangleCount > 0) {
       std::vector<gpu::BvhNode> rebuilt = wideNodes(meshes_[m].bvh, meshes_[m].wide, range.firstTriangle, range.rootNode);
@@ -150,8 +150,8 @@ void SceneUpdater::relayoutNodes() {
       continue;
     }
     // Interior child indices are absolute, so they move with the block.
-    uint32_t shift = range.rootNode - oldRoot[m];
-    for (uint32_t i = oldRoot[m]; i < oldRoot[m + 1]; ++i) {
+    uint32_t shift = range.rootNode - oldStart;
+    for (uint32_t i = oldStart; i < oldEnd; ++i) {
       gpu::BvhNode node = gpu_.nodes[i];
       for (uint32_t slot = 0; slot < WP_BVH_WIDTH; ++slot) {
         if (node.childCount[slot] == 0 && node.childIndex[slot] != WP_INVALID) {

@@ -57,6 +57,9 @@ private:
   void checkPose(const Scene& posed) const;
   // Writes every bottom level again from mesh 0 on, after a rebuild changed a node count.
   void relayoutNodes();
+  // Where mesh m's block of nodes ends: bottom levels lie in mesh order, the top level after
+  // them, so at the next mesh's root or the top level's.
+  uint32_t nodeBlockEnd(size_t m) const;
 
   GpuScene gpu_;
   std::vector<pack_detail::PackedMesh> meshes_;
