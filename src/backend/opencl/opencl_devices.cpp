@@ -89,13 +89,14 @@ std::string poclWorkGroupMethod() {
 }
 
 std::vector<OpenClDeviceInfo> listOpenClDevices() {
-  // PoCL 3.1 (Debian 12) runs a work-group as a loop over its work-items that it vectorizes
-  // ("loopvec") by default, and the traversal's loops diverge from one work-item to the next:
-  // on the Cornell box (512x512, 64 spp, 2 cores) extend took 31.1 s and connect 17.2 s so,
-  // 5.0 s and 2.2 s with continuation-based work-groups ("cbs", the default of later PoCLs),
-  // the whole render 58.6 s against 17.7 s ("repl" 21.8 s). Set before PoCL starts; a
-  // method the user set wins, and other drivers ignore the variable.
-  setenv(kPoclWorkGroupMethod, "cbs", /*overwrite=*/0);
+  // PoCL 3.1 (Debian 12), left to itself, runs a work-group as a loop over its work-items that
+  // it vectorizes ("loopvec"), and the traversal's loops diverge from one work-item to the
+  // next: with the binary BVH, on the Cornell box (512x512, 64 spp, 2 cores) extend took
+  // 31.1 s and connect 17.2 s so, 5.0 s and 2.2 s with POCL_WORK_GROUP_METHOD=auto, the whole
+  // render 58.6 s against 17.7 s. "auto" is a name every PoCL knows (3.1 has no "cbs": it
+  // warns once per kernel and falls back to "auto"), and later PoCLs choose by the kernel.
+  // Set before PoCL starts; a method the user set wins, and other drivers ignore the variable.
+  setenv(kPoclWorkGroupMethod, "auto", /*overwrite=*/0);
   cl_uint platformCount = 0;
   cl_int result = clGetPlatformIDs(0, nullptr, &platformCount);
   if (result == CL_PLATFORM_NOT_FOUND_KHR || (result == CL_SUCCESS && platformCount == 0)) {

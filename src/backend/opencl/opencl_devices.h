@@ -32,7 +32,7 @@ struct OpenClDeviceInfo {
 std::vector<OpenClDeviceInfo> listOpenClDevices();
 
 // PoCL's way of running a work-group's work-items (POCL_WORK_GROUP_METHOD), which its
-// compiled kernels depend on: set to "cbs" by listOpenClDevices unless the user chose one
+// compiled kernels depend on: set to "auto" by listOpenClDevices unless the user chose one
 // (opencl_devices.cpp says why), and part of the program cache's key.
 std::string poclWorkGroupMethod();
 
