@@ -15,8 +15,8 @@
 // two more entries for later, so a stack of this size serves either level.
 #define WP_BVH_MAX_DEPTH 32u
 #define WP_LEVEL_STACK_SIZE (3u * WP_BVH_MAX_DEPTH + 2u)
-// Bottom-level leaves hold at most this many triangles (the packer builds them so), which
-// lets the traversal test a leaf with a loop of fixed length.
+// Bottom-level leaves hold at most this many triangles (the packer builds them so): a leaf's
+// count fits the bits above a stack entry's index.
 #define WP_MAX_LEAF_TRIANGLES 4u
 // Stack entries pack a node or leaf index with a leaf's primitive count above it.
 #define WP_ENTRY_COUNT_SHIFT 29u
@@ -137,17 +137,19 @@ WP_FN Hit intersectPlanes(WP_BUFFERS uint planeCount, vec3 origin, vec3 directio
   return hit;
 }
 
-// The triangles of a bottom-level leaf entry of `instance`, with the ray in object space: a
-// loop of fixed length WP_MAX_LEAF_TRIANGLES that the compiler unrolls (the slots past the
-// leaf's count test its first triangle again and are ignored).
+// The triangles of a bottom-level leaf entry of `instance`, with the ray in object space. The
+// loop runs over the leaf's own count: most leaves hold two triangles (a mesh's quads), and a
+// loop of fixed length WP_MAX_LEAF_TRIANGLES, which tested the first triangle again in the
+// empty slots, spent half its triangle tests for nothing (PoCL's extend 3% and lavapipe's 4%
+// slower on the instanced scene).
 WP_FN_INLINED Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec3 d, Hit hit) {
   uint first = entryIndex(leaf);
   uint count = entryCount(leaf);
-  for (uint k = 0u; k < WP_MAX_LEAF_TRIANGLES; ++k) {
-    uint j = first + (k < count ? k : 0u);
+  for (uint k = 0u; k < count; ++k) {
+    uint j = first + k;
     GpuTriangle tri = WP_LOAD(triangles, j);
     float t = intersectTriangle(o, d, triangleVertex0(tri), triangleEdge1(tri), triangleEdge2(tri), hit.t);
-    if (k < count && t < hit.t) {
+    if (t < hit.t) {
       hit.t = t;
       hit.instance = instance;
       hit.primitive = j;
