@@ -35,9 +35,8 @@ private:
   // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
   uint64_t pathStateBytes(uint64_t maxPaths) const;
   void createLayouts();
-  // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout.
-  // A compute pipeline of the SPIR-V `words`, specialized to sceneFeatures_
-  // (prelude_glsl.h).
+  // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout,
+  // specialized to sceneFeatures_ (prelude_glsl.h).
   VkPipeline createPipeline(const uint32_t* words, size_t bytes);
   void writeDescriptors();
   // A view of the whole buffer as texels of `format` (RGBA32UI or R32UI) (kept until the descriptors are rewritten).
@@ -48,9 +47,9 @@ private:
   std::unique_ptr<VulkanContext> context_;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
-  std::array<VkPipeline, kKernelCount> pipelines_{};
+  std::array<VkPipeline, kKernelCount> pipelines_{};  // none until the first loadScene
   bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
-  SceneFeatures sceneFeatures_;  // and specialized to these (none at first)
+  SceneFeatures sceneFeatures_;  // and specialized to these
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet descriptorSet_ = VK_NULL_HANDLE;
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
