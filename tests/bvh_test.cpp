@@ -1,6 +1,7 @@
 // Tests of the BVH builders, the GPU scene packer and the portable traversal (traverse.h
 // compiled as C++) against brute force.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -549,10 +550,11 @@ TEST(Traversal, SingleTriangleMeshIsOneNodeWithThreeEmptySlots) {
 
 // ---- 4-wide nodes -----------------------------------------------------------------------
 
-// Boxes along the ray's axis at known entry distances, in shuffled slots: the ranks order the
-// reached ones nearest first, ties by slot, and leave out the missed box and the empty slot.
-TEST(WideBvh, ChildrenAreRankedByEntryDistance) {
+// Boxes along the ray's axis at known entry distances, in shuffled slots: the reached ones
+// come nearest first, ties by slot, and the missed box and the empty slot after them.
+TEST(WideBvh, ChildrenAreOrderedByEntryDistance) {
   auto boxAt = [](float z) { return Aabb{glm::vec3(-1.0f, -1.0f, z), glm::vec3(1.0f, 1.0f, z + 0.5f)}; };
+  using wp::gpu::packEntry;
   glm::vec3 origin(0.0f), direction(0.0f, 0.0f, 1.0f);
   glm::vec3 invDir = wp::gpu::rayInverseDirection(direction);
   wp::gpu::BvhNode node = wp::emptyWideNode();
@@ -562,22 +564,35 @@ TEST(WideBvh, ChildrenAreRankedByEntryDistance) {
   wp::setWideChild(node, 3, boxAt(3.0f), 13, 1);
   wp::gpu::ChildHits c = wp::gpu::intersectChildren(node, origin, invDir, 100.0f);
   EXPECT_EQ(c.count, 3u);
-  EXPECT_EQ(c.ranks, glm::uvec4(2, 0, 3, 1));
-  EXPECT_EQ(c.nearest, wp::gpu::packEntry(11, 3));
-  EXPECT_EQ(c.entries.w, wp::gpu::packEntry(13, 1));
+  EXPECT_EQ(c.nearestFirst, glm::uvec4(packEntry(11, 3), packEntry(13, 1), packEntry(10, 0), packEntry(12, 0)));
   // tMax in front of the farthest box leaves it out.
   c = wp::gpu::intersectChildren(node, origin, invDir, 4.0f);
   EXPECT_EQ(c.count, 2u);
-  EXPECT_GE(c.ranks.x, 2u);
-  // Equal entry distances go by slot; an empty slot is never reached, whatever its bounds.
-  wp::setWideChild(node, 2, boxAt(2.0f), 12, 0);
+  EXPECT_EQ(c.nearestFirst.x, packEntry(11, 3));
+  EXPECT_EQ(c.nearestFirst.y, packEntry(13, 1));
+  // Equal entry distances go by slot, also when the later slot comes first in the network's
+  // pairs; an empty slot is never reached, whatever its bounds.
+  wp::setWideChild(node, 3, boxAt(2.0f), 13, 1);
+  wp::setWideChild(node, 2, boxAt(3.0f), 12, 0);
+  wp::setWideChild(node, 1, boxAt(2.0f), 11, 3);
   wp::setWideChild(node, 0, boxAt(2.0f), WP_INVALID, 0);
   c = wp::gpu::intersectChildren(node, origin, invDir, 100.0f);
   EXPECT_EQ(c.count, 3u);
-  EXPECT_EQ(c.ranks.y, 0u);
-  EXPECT_EQ(c.ranks.z, 1u);
-  EXPECT_EQ(c.ranks.w, 2u);
-  EXPECT_GE(c.ranks.x, 3u);
+  EXPECT_EQ(c.nearestFirst.x, packEntry(11, 3));
+  EXPECT_EQ(c.nearestFirst.y, packEntry(13, 1));
+  EXPECT_EQ(c.nearestFirst.z, packEntry(12, 0));
+  EXPECT_EQ(c.nearestFirst.w, packEntry(WP_INVALID, 0));
+  // Four reached boxes in every order of their slots.
+  std::array<uint32_t, 4> slotOfRank = {0, 1, 2, 3};
+  do {
+    for (uint32_t rank = 0; rank < 4; ++rank) {
+      wp::setWideChild(node, slotOfRank[rank], boxAt(2.0f + float(rank)), 20 + rank, 0);
+    }
+    c = wp::gpu::intersectChildren(node, origin, invDir, 100.0f);
+    EXPECT_EQ(c.count, 4u);
+    EXPECT_EQ(c.nearestFirst, glm::uvec4(20, 21, 22, 23))
+        << "slots by rank " << slotOfRank[0] << slotOfRank[1] << slotOfRank[2] << slotOfRank[3];
+  } while (std::next_permutation(slotOfRank.begin(), slotOfRank.end()));
 }
 
 // The collapse keeps every leaf once, fills nodes while interior children are left to open,

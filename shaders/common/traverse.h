@@ -40,29 +40,37 @@ WP_FN uint packEntry(uint index, uint count) { return index | (count << WP_ENTRY
 WP_FN uint entryIndex(uint entry) { return entry & WP_ENTRY_INDEX_MASK; }
 WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
 
-// The children of a node that a ray reaches before tMax, ranked by the distance at which it
-// enters them.
+// The children of a node that a ray reaches before tMax, nearest first.
 WP_STRUCT(ChildHits)
-  uvec4 entries;  // each slot's stack entry (packEntry)
-  // Each slot's place in the order of entry distance, nearest first: the reached children
-  // take ranks 0 .. count - 1, the missed and empty slots the ranks after them.
-  uvec4 ranks;
-  uint count;    // children reached: 0 to 4
-  uint nearest;  // the entry of the child of rank 0 (when count > 0)
+  // Each child's stack entry (packEntry): the reached children in the first `count`
+  // components by the distance at which the ray enters them (ties by slot), then the missed
+  // and empty slots.
+  uvec4 nearestFirst;
+  uint count;  // children reached: 0 to 4
 WP_STRUCT_END(ChildHits)
 
-// Rank of the slot of key `key` among the other three slots' keys a, b, c (given in slot
-// order): the number of them that come first, by a smaller key or, on a tie, by a lower slot.
-// The first `lowerSlots` of a, b, c are the slots below this one.
-WP_FN_INLINED uint rankAmong(float key, float a, float b, float c, uint lowerSlots) {
-  return (a < key || (a == key && 0u < lowerSlots) ? 1u : 0u) + (b < key || (b == key && 1u < lowerSlots) ? 1u : 0u) +
-         (c < key || (c == key && 2u < lowerSlots) ? 1u : 0u);
-}
+// Puts the pairs (keyA, entryA), (keyB, entryB) in order of key, swapping only when B's key is
+// smaller, so equal keys keep their order. A macro of selects: no branches, and the same
+// statements in GLSL, OpenCL C and C++ (which differ in how a function writes its arguments).
+#define WP_ORDER_PAIR(keyA, entryA, keyB, entryB) \
+  {                                               \
+    bool swap_ = (keyB) < (keyA);                 \
+    float key_ = swap_ ? (keyB) : (keyA);         \
+    (keyB) = swap_ ? (keyA) : (keyB);             \
+    (keyA) = key_;                                \
+    uint entry_ = swap_ ? (entryB) : (entryA);    \
+    (entryB) = swap_ ? (entryA) : (entryB);       \
+    (entryA) = entry_;                            \
+  }
 
 // The slab test of all four children at once, one vec4 per axis: a child is reached when
 // the ray (invDir = rayInverseDirection(direction)) enters its box at some t in [0, tMax];
-// then their ranks. Ranking instead of sorting keeps it free of branches: each lane
-// writes the far children straight to their stack places (traceScene, traceBottomLevel).
+// then the children in order of entry distance, by an odd-even transposition network of
+// four rounds over (distance, entry) pairs: six compare-and-swaps of selects, stable, so
+// ties go by slot and the missed slots (distance WP_FLT_MAX) stay after the reached ones.
+// It replaced ranking each slot against the other three (twelve comparisons with a tie
+// rule each, and four conditional stack writes per slot): PoCL's extend 7% and lavapipe's
+// 5% faster on the instanced scene, images bit-identical.
 WP_FN_INLINED ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir, float tMax) {
   vec4 x0 = (node.childMinX - origin.x) * invDir.x;
   vec4 x1 = (node.childMaxX - origin.x) * invDir.x;
@@ -84,16 +92,19 @@ WP_FN_INLINED ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir
   float k1 = reached1 ? entry.y : WP_FLT_MAX;
   float k2 = reached2 ? entry.z : WP_FLT_MAX;
   float k3 = reached3 ? entry.w : WP_FLT_MAX;
+  uint e0 = packEntry(index.x, node.childCount.x);
+  uint e1 = packEntry(index.y, node.childCount.y);
+  uint e2 = packEntry(index.z, node.childCount.z);
+  uint e3 = packEntry(index.w, node.childCount.w);
+  WP_ORDER_PAIR(k0, e0, k1, e1)
+  WP_ORDER_PAIR(k2, e2, k3, e3)
+  WP_ORDER_PAIR(k1, e1, k2, e2)
+  WP_ORDER_PAIR(k0, e0, k1, e1)
+  WP_ORDER_PAIR(k2, e2, k3, e3)
+  WP_ORDER_PAIR(k1, e1, k2, e2)
   ChildHits c;
-  c.entries = make_uvec4(packEntry(index.x, node.childCount.x), packEntry(index.y, node.childCount.y),
-                         packEntry(index.z, node.childCount.z), packEntry(index.w, node.childCount.w));
-  c.ranks = make_uvec4(rankAmong(k0, k1, k2, k3, 0u), rankAmong(k1, k0, k2, k3, 1u),
-                       rankAmong(k2, k0, k1, k3, 2u), rankAmong(k3, k0, k1, k2, 3u));
+  c.nearestFirst = make_uvec4(e0, e1, e2, e3);
   c.count = (reached0 ? 1u : 0u) + (reached1 ? 1u : 0u) + (reached2 ? 1u : 0u) + (reached3 ? 1u : 0u);
-  c.nearest = c.ranks.x == 0u ? c.entries.x
-              : c.ranks.y == 0u ? c.entries.y
-              : c.ranks.z == 0u ? c.entries.z
-                                : c.entries.w;
   return c;
 }
 
@@ -102,20 +113,14 @@ WP_FN_INLINED ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir
 // function: GLSL would copy the whole stack in and out of a call.
 #define WP_PUSH_FAR_CHILDREN(stack, sp, hits)                        \
   {                                                                  \
-    uint top_ = (sp) + (hits).count - 1u;                            \
-    if ((hits).ranks.x > 0u && (hits).ranks.x < (hits).count) {      \
-      stack[top_ - (hits).ranks.x] = (hits).entries.x;               \
+    if ((hits).count > 3u) {                                         \
+      stack[(sp) + (hits).count - 4u] = (hits).nearestFirst.w;       \
     }                                                                \
-    if ((hits).ranks.y > 0u && (hits).ranks.y < (hits).count) {      \
-      stack[top_ - (hits).ranks.y] = (hits).entries.y;               \
-    }                                                                \
-    if ((hits).ranks.z > 0u && (hits).ranks.z < (hits).count) {      \
-      stack[top_ - (hits).ranks.z] = (hits).entries.z;               \
-    }                                                                \
-    if ((hits).ranks.w > 0u && (hits).ranks.w < (hits).count) {      \
-      stack[top_ - (hits).ranks.w] = (hits).entries.w;               \
+    if ((hits).count > 2u) {                                         \
+      stack[(sp) + (hits).count - 3u] = (hits).nearestFirst.z;       \
     }                                                                \
     if ((hits).count > 1u) {                                         \
+      stack[(sp) + (hits).count - 2u] = (hits).nearestFirst.y;       \
       (sp) += (hits).count - 1u;                                     \
     }                                                                \
   }
@@ -175,14 +180,14 @@ WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, 
       ChildHits b = intersectChildren(WP_LOAD(nodes, node), o, invDir, hit.t);
       WP_PUSH_FAR_CHILDREN(stack, sp, b)
       node = WP_INVALID;
-      if (b.count > 0u && entryCount(b.nearest) == 0u) {
-        node = b.nearest;
+      if (b.count > 0u && entryCount(b.nearestFirst.x) == 0u) {
+        node = b.nearestFirst.x;
       } else {
         if (b.count > 0u && leaf == WP_INVALID) {
-          leaf = b.nearest;
+          leaf = b.nearestFirst.x;
         } else if (b.count > 0u) {
           // This lane already holds a leaf (it waits for the others): keep the new one.
-          stack[sp] = b.nearest;
+          stack[sp] = b.nearestFirst.x;
           ++sp;
         }
         if (sp > 0u) {
@@ -274,7 +279,7 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
       ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
       WP_PUSH_FAR_CHILDREN(stack, sp, c)
       if (c.count > 0u) {
-        entry = c.nearest;
+        entry = c.nearestFirst.x;
         continue;
       }
     } else {
