@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,6 +19,7 @@
 #include "bvh/gpu_scene.h"
 #include "render/camera_lens.h"
 #include "scene/gltf_loader.h"
+#include "shaders/common/sampling.h"
 #include "shaders/common/traverse.h"
 
 namespace {
@@ -125,13 +125,9 @@ int main(int argc, char** argv) {
       if (glm::dot(n, camera[i].direction) > 0.0f) {
         n = -n;
       }
-      const float phi = 2.0f * std::numbers::pi_v<float> * uniform(rng);
-      const float r2 = uniform(rng);
-      const glm::vec3 t = glm::normalize(std::abs(n.x) > 0.5f ? glm::cross(n, glm::vec3(0, 1, 0))
-                                                              : glm::cross(n, glm::vec3(1, 0, 0)));
-      const glm::vec3 b = glm::cross(n, t);
-      const glm::vec3 d = glm::normalize(t * (std::cos(phi) * std::sqrt(r2)) + b * (std::sin(phi) * std::sqrt(r2)) +
-                                         n * std::sqrt(1.0f - r2));
+      const glm::vec2 u(uniform(rng), uniform(rng));
+      const glm::vec3 d =
+          glm::normalize(wp::gpu::frameToWorld(wp::gpu::makeFrame(n), wp::gpu::sampleCosineHemisphere(u)));
       const glm::vec3 p = camera[i].origin + camera[i].direction * h.t;
       bounce.push_back({wp::gpu::offsetRayOrigin(p, n, d), d});
       lo = glm::min(lo, p);
