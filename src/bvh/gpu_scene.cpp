@@ -391,9 +391,7 @@ InstanceLevelSeconds packInstances(const Scene& scene, std::span<const PackedMes
   options.maxLeafSize = kInstanceLeafSize;
   options.maxDepth = WP_BVH_MAX_DEPTH;
   Bvh tlas = buildBvh(candidates.worldBounds, centers, options);
-  out.tlasRoot = static_cast<uint32_t>(out.nodes.size());
-  std::vector<gpu::BvhNode> tlasNodes = wideNodes(tlas, collapseToWide(tlas), 0, out.tlasRoot);
-  out.nodes.insert(out.nodes.end(), tlasNodes.begin(), tlasNodes.end());
+  out.tlasRoot = appendWideNodes(tlas, collapseToWide(tlas), 0, out.nodes);
   time.tlas = seconds(start);
 
   // Instances in top-level leaf order, each still mesh instance followed by its block of
@@ -454,10 +452,8 @@ GpuScene packSceneParts(const Scene& scene, std::vector<PackedMesh>& meshes) {
     GpuMeshRange& range = out.meshes.emplace_back();
     range.firstTriangle = static_cast<uint32_t>(out.triangles.size());
     range.triangleCount = static_cast<uint32_t>(mesh.triangleCount());
-    range.rootNode = static_cast<uint32_t>(out.nodes.size());
     WideLayout wide = collapseToWide(bvh);
-    std::vector<gpu::BvhNode> nodes = wideNodes(bvh, wide, range.firstTriangle, range.rootNode);
-    out.nodes.insert(out.nodes.end(), nodes.begin(), nodes.end());
+    range.rootNode = appendWideNodes(bvh, wide, range.firstTriangle, out.nodes);
     out.triangles.resize(out.triangles.size() + range.triangleCount);
     out.triangleShading.resize(out.triangles.size());
     writeTriangles(scene, mesh, bvh, prims, range.firstTriangle, out);

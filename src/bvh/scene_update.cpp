@@ -141,14 +141,13 @@ void SceneUpdater::relayoutNodes() {
   std::vector<gpu::BvhNode> nodes;
   for (size_t m = 0; m < gpu_.meshes.size(); ++m) {
     GpuMeshRange& range = gpu_.meshes[m];
+    if (deforming_[m] && range.triangleCount > 0) {
+      range.rootNode = appendWideNodes(meshes_[m].bvh, meshes_[m].wide, range.firstTriangle, nodes);
+      continue;
+    }
     const uint32_t oldStart = range.rootNode;
     const uint32_t oldEnd = nodeBlockEnd(m);
     range.rootNode = static_cast<uint32_t>(nodes.size());
-    if (deforming_[m] && range.triangleCount > 0) {
-      std::vector<gpu::BvhNode> rebuilt = wideNodes(meshes_[m].bvh, meshes_[m].wide, range.firstTriangle, range.rootNode);
-      nodes.insert(nodes.end(), rebuilt.begin(), rebuilt.end());
-      continue;
-    }
     // Interior child indices are absolute, so they move with the block.
     uint32_t shift = range.rootNode - oldStart;
     for (uint32_t i = oldStart; i < oldEnd; ++i) {

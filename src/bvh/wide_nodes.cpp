@@ -127,4 +127,11 @@ std::vector<gpu::BvhNode> wideNodes(const Bvh& bvh, const WideLayout& layout, ui
   return out;
 }
 
+uint32_t appendWideNodes(const Bvh& bvh, const WideLayout& layout, uint32_t primBase, std::vector<gpu::BvhNode>& out) {
+  const uint32_t root = static_cast<uint32_t>(out.size());
+  std::vector<gpu::BvhNode> nodes = wideNodes(bvh, layout, primBase, root);
+  out.insert(out.end(), nodes.begin(), nodes.end());
+  return root;
+}
+
 }  // namespace wp

@@ -34,6 +34,9 @@ WideLayout collapseToWide(const Bvh& bvh);
 // indices absolute.
 std::vector<gpu::BvhNode> wideNodes(const Bvh& bvh, const WideLayout& layout, uint32_t primBase, uint32_t base);
 
+// wideNodes placed at the end of `out`; returns where its root now lies.
+uint32_t appendWideNodes(const Bvh& bvh, const WideLayout& layout, uint32_t primBase, std::vector<gpu::BvhNode>& out);
+
 // A node whose four slots are empty.
 gpu::BvhNode emptyWideNode();
 
