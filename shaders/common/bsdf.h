@@ -17,7 +17,7 @@ WP_FN SurfaceMaterial surfaceMaterialOf(GpuMaterial m) {
   s.metallic = m.surface.x;
   s.roughness = m.surface.y;
   s.ior = m.surface.z;
-  s.transmission = m.surface.w;
+  s.transmission = materialTransmission(m);
   s.disneyDiffuse = m.info.x == WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
   s.specularWeight = materialSpecularWeight(m);
   s.specularColor = materialSpecularColor(m);

@@ -507,7 +507,7 @@ SceneFeatures GpuScene::features() const {
     const bool gltf = kind != WP_MATERIAL_LAMBERT && kind != WP_MATERIAL_UNLIT;
     f.layered = f.layered || (gltf && (gpu::materialClearcoat(m) > 0.0f ||
                                        gpu::maxComponent(gpu::materialSheenColor(m)) > 0.0f));
-    f.transmissive = f.transmissive || (gltf && m.surface.w > 0.0f);  // transmission
+    f.transmissive = f.transmissive || (gltf && gpu::materialTransmission(m) > 0.0f);
     f.microfacet = f.microfacet || gltf;
   }
   return f;
