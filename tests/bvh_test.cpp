@@ -593,6 +593,19 @@ TEST(WideBvh, ChildrenAreOrderedByEntryDistance) {
     EXPECT_EQ(c.nearestFirst, glm::uvec4(20, 21, 22, 23))
         << "slots by rank " << slotOfRank[0] << slotOfRank[1] << slotOfRank[2] << slotOfRank[3];
   } while (std::next_permutation(slotOfRank.begin(), slotOfRank.end()));
+  // One reached box in each slot (where work-items are threads, as here, the network is
+  // skipped for it): it comes first; none reached gives count 0.
+  for (uint32_t reached = 0; reached < 4; ++reached) {
+    for (uint32_t slot = 0; slot < 4; ++slot) {
+      wp::setWideChild(node, slot, slot == reached ? boxAt(2.0f) : Aabb{glm::vec3(4.0f), glm::vec3(5.0f)}, 30 + slot,
+                       slot);
+    }
+    c = wp::gpu::intersectChildren(node, origin, invDir, 100.0f);
+    EXPECT_EQ(c.count, 1u);
+    EXPECT_EQ(c.nearestFirst.x, packEntry(30 + reached, reached)) << "reached slot " << reached;
+  }
+  c = wp::gpu::intersectChildren(node, origin, invDir, 1.0f);
+  EXPECT_EQ(c.count, 0u);
 }
 
 // The collapse keeps every leaf once, fills nodes while interior children are left to open,

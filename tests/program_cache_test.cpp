@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "backend/opencl/opencl_backend.h"
 #include "backend/opencl/program_cache.h"
 #include "image/image_io.h"
 #include "support/run_wavepath.h"
@@ -34,6 +35,23 @@ std::vector<std::filesystem::path> entries(const std::filesystem::path& dir) {
 }
 
 const std::vector<unsigned char> kBinary = {'b', 'i', 'n', 0, 1, 2, 3, 255, 'a', 'r', 'y'};
+
+// On a CPU device the kernels are built for work-items that run as threads (prelude_cl.h:
+// the traversal branches where SIMD lanes would not, and prefetches); on a GPU they are not.
+// The options are the cache key too, so the two builds are cached apart.
+TEST(ProgramOptions, CpuDevicesBuildWorkItemsAsThreadsGpusAsLanes) {
+  OpenClDeviceInfo cpu;
+  cpu.type = "CPU";
+  OpenClDeviceInfo gpu;
+  gpu.type = "GPU";
+  const std::string threads = "-DWP_WORK_ITEMS_ARE_THREADS=1";
+  EXPECT_NE(openClProgramOptions(cpu, false, false).find(threads), std::string::npos);
+  EXPECT_NE(openClProgramOptions(cpu, true, true).find(threads), std::string::npos);
+  EXPECT_EQ(openClProgramOptions(gpu, false, false).find(threads), std::string::npos);
+  EXPECT_EQ(openClProgramOptions(gpu, true, true).find(threads), std::string::npos);
+  EXPECT_EQ(openClProgramOptions(gpu, true, true), "-cl-std=CL1.2 -Werror -DWP_MOTION_BLUR=1");
+  EXPECT_EQ(openClProgramOptions(cpu, false, false), "-cl-std=CL1.2 -DWP_WORK_ITEMS_ARE_THREADS=1");
+}
 
 TEST(ProgramCache, StoredBinaryLoadsBackAndNoTemporaryFileRemains) {
   std::filesystem::path dir = scratchDirectory("cache") / "new" / "dir";

@@ -10,6 +10,16 @@ typedef uint4 uvec4;
 
 // Whether `x` holds in every active lane of the subgroup; only steers performance.
 #define WP_SUBGROUP_ALL(x) (x)
+// 1 where each work-item runs as a thread of its own (a CPU device: the backend passes
+// -DWP_WORK_ITEMS_ARE_THREADS=1), 0 where work-items are SIMD lanes that run both sides of a
+// branch any of them takes (GPUs). Steers how the traversal spends instructions.
+#ifndef WP_WORK_ITEMS_ARE_THREADS
+#define WP_WORK_ITEMS_ARE_THREADS 0
+#endif
+#if WP_WORK_ITEMS_ARE_THREADS
+// Starts fetching the cache line that holds `lvalue` (a CPU's prefetch instruction).
+#define WP_PREFETCH(lvalue) __builtin_prefetch(&(lvalue))
+#endif
 #define WP_BEGIN
 #define WP_END
 #define WP_FN

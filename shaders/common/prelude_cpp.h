@@ -22,6 +22,8 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_MOTION_BLUR 1
 // Whether `x` holds in every active lane of the subgroup; only steers performance.
 #define WP_SUBGROUP_ALL(x) (x)
+#define WP_WORK_ITEMS_ARE_THREADS 1
+#define WP_PREFETCH(lvalue) __builtin_prefetch(&(lvalue))
 #define WP_BEGIN namespace wp::gpu {
 #define WP_END }
 #define WP_FN inline

@@ -8,6 +8,8 @@
 #else
 #define WP_SUBGROUP_ALL(x) (x)
 #endif
+// Work-items are SIMD lanes (lavapipe's, and a GPU's), never threads of their own.
+#define WP_WORK_ITEMS_ARE_THREADS 0
 #define WP_BEGIN
 #define WP_END
 #define WP_FN

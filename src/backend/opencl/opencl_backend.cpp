@@ -24,6 +24,20 @@ constexpr uint32_t kPassConstantsArgument = [] {
 
 }  // namespace
 
+std::string openClProgramOptions(const OpenClDeviceInfo& device, bool validate, bool motion) {
+  std::string options = "-cl-std=CL1.2";
+  if (validate) {
+    options += " -Werror";
+  }
+  if (motion) {
+    options += " -DWP_MOTION_BLUR=1";
+  }
+  if (device.type == "CPU") {
+    options += " -DWP_WORK_ITEMS_ARE_THREADS=1";
+  }
+  return options;
+}
+
 OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate)
     : context_(std::make_unique<OpenClContext>(deviceIndex)), dispatchMode_(dispatch), validate_(validate) {
   const OpenClDeviceInfo& device = context_->device;
@@ -36,8 +50,7 @@ OpenClBackend::OpenClBackend(int deviceIndex, ClDispatch dispatch, bool validate
 void OpenClBackend::buildVariant(bool motion) {
   Variant& v = variants_[motion];
   // The binary cache keys on the options, so each variant is cached apart.
-  std::string options = validate_ ? "-cl-std=CL1.2 -Werror" : "-cl-std=CL1.2";
-  v.program = std::make_unique<OpenClProgram>(*context_, motion ? options + " -DWP_MOTION_BLUR=1" : options);
+  v.program = std::make_unique<OpenClProgram>(*context_, openClProgramOptions(context_->device, validate_, motion));
   for (int k = 0; k < kKernelCount; ++k) {
     cl_int result = CL_SUCCESS;
     v.kernels[k] = clCreateKernel(v.program->handle(), kernelName(Kernel(k)), &result);

@@ -27,6 +27,11 @@ enum class ClDispatch {
   Readback,
 };
 
+// The options the kernels are built with on `device`: OpenCL C 1.2; warnings as errors with
+// `validate`; WP_MOTION_BLUR for the `motion` variant; WP_WORK_ITEMS_ARE_THREADS on a CPU
+// device, where each work-item runs as a thread's scalar code (prelude_cl.h).
+std::string openClProgramOptions(const OpenClDeviceInfo& device, bool validate, bool motion);
+
 class OpenClBackend final : public Backend {
 public:
   // deviceIndex < 0 picks the most capable device. With `validate` the kernels build with
