@@ -18,7 +18,7 @@ WP_FN SurfaceMaterial surfaceMaterialOf(GpuMaterial m) {
   s.roughness = m.surface.y;
   s.ior = m.surface.z;
   s.transmission = materialTransmission(m);
-  s.disneyDiffuse = m.info.x == WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
+  s.disneyDiffuse = materialKind(m) == WP_MATERIAL_GLTF_DISNEY_DIFFUSE;
   s.specularWeight = materialSpecularWeight(m);
   s.specularColor = materialSpecularColor(m);
   s.sheenColor = materialSheenColor(m);
@@ -54,10 +54,10 @@ WP_FN MaterialSample sampleLambert(vec3 albedo, vec3 wo, vec2 u) {
 // f |cos(theta_i)| and the density of wi under sampleBsdf with the same `flags` (WP_BSDF_*).
 // An unlit material scatters nothing (its colour is emission, integrator.h).
 WP_FN BsdfEval evalBsdf(GpuMaterial m, vec3 wo, vec3 wi, uint flags) {
-  if (m.info.x == WP_MATERIAL_UNLIT) {
+  if (materialKind(m) == WP_MATERIAL_UNLIT) {
     return noEval();
   }
-  if (!WP_SCENE_MICROFACET || m.info.x == WP_MATERIAL_LAMBERT) {  // (see prelude_glsl.h)
+  if (!WP_SCENE_MICROFACET || materialKind(m) == WP_MATERIAL_LAMBERT) {  // (see prelude_glsl.h)
     return evalLambert(albedoOf(m), wo, wi);
   }
   return evalMaterial(surfaceMaterialOf(m), wo, wi, flags);
@@ -65,15 +65,15 @@ WP_FN BsdfEval evalBsdf(GpuMaterial m, vec3 wo, vec3 wi, uint flags) {
 
 // Whether the material reflects and transmits only in delta directions (materialIsPerfectlySpecular).
 WP_FN bool bsdfIsPerfectlySpecular(GpuMaterial m) {
-  return WP_SCENE_MICROFACET && m.info.x != WP_MATERIAL_LAMBERT && materialIsPerfectlySpecular(surfaceMaterialOf(m));
+  return WP_SCENE_MICROFACET && materialKind(m) != WP_MATERIAL_LAMBERT && materialIsPerfectlySpecular(surfaceMaterialOf(m));
 }
 
 // u in [0, 1)^3; see sampleMaterial for delta samples.
 WP_FN MaterialSample sampleBsdf(GpuMaterial m, vec3 wo, vec3 u, uint flags) {
-  if (m.info.x == WP_MATERIAL_UNLIT) {
+  if (materialKind(m) == WP_MATERIAL_UNLIT) {
     return noSample();
   }
-  if (!WP_SCENE_MICROFACET || m.info.x == WP_MATERIAL_LAMBERT) {  // (see prelude_glsl.h)
+  if (!WP_SCENE_MICROFACET || materialKind(m) == WP_MATERIAL_LAMBERT) {  // (see prelude_glsl.h)
     return sampleLambert(albedoOf(m), wo, make_vec2(u.y, u.z));
   }
   return sampleMaterial(surfaceMaterialOf(m), wo, u, flags);

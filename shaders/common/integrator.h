@@ -121,7 +121,7 @@ WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
     m.surface.y *= t.y;
   }
   m = texturedLayers(WP_BUFFERS_ARG m, c);
-  if (m.info.x == WP_MATERIAL_UNLIT) {
+  if (materialKind(m) == WP_MATERIAL_UNLIT) {
     m.emission = make_vec4(m.baseColor.x, m.baseColor.y, m.baseColor.z, m.emission.w);
   }
   return m;

@@ -338,6 +338,7 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
   F(uvec4, layerMaps)            \
   F(uvec4, clearcoatMaps)
 WP_RECORD(GpuMaterial)
+WP_FN uint materialKind(GpuMaterial m) { return m.info.x; }  // WP_MATERIAL_*
 WP_FN float materialTransmission(GpuMaterial m) { return m.surface.w; }
 WP_FN vec3 materialSpecularColor(GpuMaterial m) { return make_vec3(m.specular.x, m.specular.y, m.specular.z); }
 WP_FN float materialSpecularWeight(GpuMaterial m) { return m.specular.w; }

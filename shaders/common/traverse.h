@@ -14,7 +14,7 @@
 // at most three children, and a bottom-level lane that already holds a postponed leaf keeps
 // two more entries for later, so a stack of this size serves either level.
 #define WP_BVH_MAX_DEPTH 32u
-#define WP_LEVEL_STACK_SIZE (3u * WP_BVH_MAX_DEPTH + 2u)
+#define WP_LEVEL_STACK_SIZE ((WP_BVH_WIDTH - 1u) * WP_BVH_MAX_DEPTH + 2u)
 // Bottom-level leaves hold at most this many triangles (the packer builds them so): a leaf's
 // count fits the bits above a stack entry's index.
 #define WP_MAX_LEAF_TRIANGLES 4u

@@ -25,11 +25,6 @@
 namespace wp {
 namespace {
 
-// Three far children per wide level down (wide levels are no deeper than binary ones), plus
-// the two entries a bottom-level lane keeps while it holds a postponed leaf.
-static_assert((WP_BVH_WIDTH - 1) * WP_BVH_MAX_DEPTH + 2 <= WP_LEVEL_STACK_SIZE,
-              "a traversal stack must hold the far children of a path down its level");
-
 constexpr uint32_t kMeshLeafSize = WP_MAX_LEAF_TRIANGLES;
 // One instance per top-level leaf: an instance test (transform plus a whole bottom-level
 // traversal) costs far more than a node visit.
@@ -503,7 +498,7 @@ SceneFeatures GpuScene::features() const {
                               [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
   f.textured = !textures.empty();
   for (const gpu::GpuMaterial& m : materials) {
-    const uint32_t kind = m.info.x;  // WP_MATERIAL_* (layout.h)
+    const uint32_t kind = gpu::materialKind(m);
     const bool gltf = kind != WP_MATERIAL_LAMBERT && kind != WP_MATERIAL_UNLIT;
     f.layered = f.layered || (gltf && (gpu::materialClearcoat(m) > 0.0f ||
                                        gpu::maxComponent(gpu::materialSheenColor(m)) > 0.0f));
