@@ -21,7 +21,7 @@ WP_FN float alphaFromRoughness(float roughness) {
 }
 
 WP_FN vec3 sphericalDirection(float sinTheta, float cosTheta, float phi) {
-  return make_vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+  return make_vec3(sinTheta * WP_WARP_COS(phi), sinTheta * WP_WARP_SIN(phi), cosTheta);
 }
 
 // ---- GGX (Trowbridge-Reitz), Walter et al. 2007 ----
@@ -70,9 +70,9 @@ WP_FN vec3 sampleGgxVisibleNormal(float alpha, vec3 o, vec2 u) {
   vec3 t2 = cross(stretched, t1);
   float r = sqrt(u.x);
   float phi = 2.0f * WP_PI * u.y;
-  float p1 = r * cos(phi);
+  float p1 = r * WP_WARP_COS(phi);
   float s = 0.5f * (1.0f + stretched.z);
-  float p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * r * sin(phi);
+  float p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * r * WP_WARP_SIN(phi);
   vec3 n = t1 * p1 + t2 * p2 + stretched * sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2));
   return normalize(make_vec3(alpha * n.x, alpha * n.y, max(0.0f, n.z)));
 }

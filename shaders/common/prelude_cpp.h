@@ -24,6 +24,9 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_SUBGROUP_ALL(x) (x)
 #define WP_WORK_ITEMS_ARE_THREADS 1
 #define WP_PREFETCH(lvalue) __builtin_prefetch(&(lvalue))
+// Sine and cosine of a sample warp's angle (prelude_cl.h): the host's are the reference.
+#define WP_WARP_SIN(angle) std::sin(angle)
+#define WP_WARP_COS(angle) std::cos(angle)
 #define WP_BEGIN namespace wp::gpu {
 #define WP_END }
 #define WP_FN inline

@@ -10,6 +10,9 @@
 #endif
 // Work-items are SIMD lanes (lavapipe's, and a GPU's), never threads of their own.
 #define WP_WORK_ITEMS_ARE_THREADS 0
+// Sine and cosine of a sample warp's angle (prelude_cl.h): GLSL's own precision suffices.
+#define WP_WARP_SIN(angle) sin(angle)
+#define WP_WARP_COS(angle) cos(angle)
 #define WP_BEGIN
 #define WP_END
 #define WP_FN

@@ -46,7 +46,7 @@ WP_FN vec2 sampleConcentricDisk(vec2 u) {
     r = oy;
     phi = (WP_PI * 0.5f) - (WP_PI * 0.25f) * (ox / oy);
   }
-  return make_vec2(r * cos(phi), r * sin(phi));
+  return make_vec2(r * WP_WARP_COS(phi), r * WP_WARP_SIN(phi));
 }
 
 // Cosine-weighted direction on the +z hemisphere (Malley's method: a uniform disk point

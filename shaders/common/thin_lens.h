@@ -111,7 +111,7 @@ WP_FN vec2 sampleRegularPolygon(vec2 u, uint sides, float rotation) {
   float a0 = rotation + wedge * toFloat(k);
   float a1 = a0 + wedge;
   vec2 b = sampleUniformTriangle(make_vec2(scaled - toFloat(k), u.y));
-  return make_vec2(cos(a0), sin(a0)) * b.x + make_vec2(cos(a1), sin(a1)) * b.y;
+  return make_vec2(WP_WARP_COS(a0), WP_WARP_SIN(a0)) * b.x + make_vec2(WP_WARP_COS(a1), WP_WARP_SIN(a1)) * b.y;
 }
 
 // A point uniform over the lens's aperture, in scene units along (right, up) from its centre;
