@@ -236,6 +236,37 @@ TEST(Devices, ABackendWithoutDevicesIsSaidToHaveNoneAndTheOtherStillListed) {
   EXPECT_NE(r.out.find("OpenCL devices:\n  none: no OpenCL platform found"), std::string::npos) << r.out;
 }
 
+// --timings says where the whole process went outside the passes (device, scene load, BVH
+// and packing, upload, image write), each part measured on its own: the parts inside the
+// frame's wall clock (all but the device and the load) cannot add up to more than it.
+TEST(Timings, SayWhereTheTimeOutsideThePassesWent) {
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  std::filesystem::path out = scratchDirectory("timings") / "image.exr";
+  RunResult r = runWavepath({"render", scene.string(), "-o", out.string(), "--width", "32", "--height", "32", "--spp",
+                             "4", "--timings"},
+                            {}, 120);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  double device = -1, load = -1, pack = -1, upload = -1, write = -1;
+  const size_t setup = r.out.find("outside the passes (ms): ");
+  ASSERT_NE(setup, std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + setup,
+                        "outside the passes (ms): device %lf, scene load %lf, BVH and packing %lf, upload %lf, "
+                        "image write %lf",
+                        &device, &load, &pack, &upload, &write),
+            5)
+      << r.out;
+  double render = -1, wall = -1;
+  const size_t summary = r.out.find(" spp in ");
+  ASSERT_NE(summary, std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + summary, " spp in %lf s (%lf s wall)", &render, &wall), 2) << r.out;
+  for (double part : {device, load, pack, upload, write}) {
+    EXPECT_GE(part, 0.0) << r.out;
+  }
+  // The render and the wall clock are printed to 0.01 s, the parts to 0.1 ms.
+  EXPECT_LE((pack + upload + write) * 1e-3 + render, wall + 0.011) << r.out;
+  EXPECT_GT(write, 0.0) << "an EXR takes some time to write: " << r.out;
+}
+
 // The error line is the last line of stderr and the only error; notes (the OpenCL compile)
 // and a compiler log may come before it.
 void expectErrorAsLastLine(const RunResult& r, const std::string& phrase) {
