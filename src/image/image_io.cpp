@@ -1,4 +1,5 @@
-// PNG and EXR output written atomically, and EXR input, through stb_image_write and tinyexr.
+// PNG and EXR output written atomically (PNG through stb_image_write, EXR by exr_writer.h), and
+// EXR input through tinyexr.
 #include "image/image_io.h"
 
 #include <stb_image_write.h>
@@ -17,6 +18,7 @@
 #include "core/error.h"
 #include "core/file_read.h"
 #include "core/log.h"
+#include "image/exr_writer.h"
 #include "shaders/common/exposure.h"
 #include "shaders/common/tone_curves.h"
 
@@ -94,79 +96,28 @@ std::string takeExrMessage(const char* err) {
   return message;
 }
 
-// The EXR channels of an image: each a name and a plane of floats.
-struct ExrPlane {
-  std::string name;
-  std::vector<float> values;
-};
-
-// The planes of `pass` (one vec3 per pixel; none when empty), named layer.<channel name>.
-void addPlanes(std::vector<ExrPlane>& planes, const std::string& layer, const char* const names[3],
-               const std::vector<glm::vec3>& pass) {
+// The channels of `pass` (one vec3 per pixel; none when empty), named layer.<channel name>,
+// read in place.
+void addChannels(std::vector<ExrChannel>& channels, const std::string& layer, const char* const names[3],
+                 const std::vector<glm::vec3>& pass) {
   for (int c = 0; c < 3 && !pass.empty(); ++c) {
-    ExrPlane plane{layer.empty() ? names[c] : layer + "." + names[c], std::vector<float>(pass.size())};
-    for (size_t i = 0; i < pass.size(); ++i) plane.values[i] = pass[i][c];
-    planes.push_back(std::move(plane));
+    channels.push_back({layer.empty() ? names[c] : layer + "." + names[c], &pass[0][c], 3});
   }
 }
 
 const char* const kColourChannels[3] = {"R", "G", "B"};
 const char* const kVectorChannels[3] = {"X", "Y", "Z"};
 
-std::vector<unsigned char> encodeExr(const fs::path& path, const RadianceImage& image) {
-  std::vector<ExrPlane> planes;
-  addPlanes(planes, "", kColourChannels, image.mean);
-  addPlanes(planes, "variance", kColourChannels, image.variance);
-  addPlanes(planes, "albedo", kColourChannels, image.albedo);
-  addPlanes(planes, "normal", kVectorChannels, image.normal);
-  if (!image.depth.empty()) planes.push_back({"depth.Z", image.depth});
-  if (!image.sampleCount.empty()) planes.push_back({"samples.X", image.sampleCount});
-  // OpenEXR wants channels sorted by name.
-  std::sort(planes.begin(), planes.end(), [](const ExrPlane& a, const ExrPlane& b) { return a.name < b.name; });
-  const int channelCount = int(planes.size());
-  std::vector<unsigned char*> planePointers(channelCount);
-  std::vector<EXRChannelInfo> channels(channelCount);
-  std::vector<int> pixelTypes(channelCount, TINYEXR_PIXELTYPE_FLOAT);
-  for (int c = 0; c < channelCount; ++c) {
-    planePointers[c] = reinterpret_cast<unsigned char*>(planes[c].values.data());
-    std::memset(&channels[c], 0, sizeof(EXRChannelInfo));
-    std::strncpy(channels[c].name, planes[c].name.c_str(), sizeof(channels[c].name) - 1);
-  }
-
-  std::vector<HeaderAttribute> attributes;
-  if (image.record) attributes = recordAttributes(*image.record);
-  std::vector<EXRAttribute> exrAttributes(attributes.size());
-  for (size_t a = 0; a < attributes.size(); ++a) {
-    std::memset(&exrAttributes[a], 0, sizeof(EXRAttribute));
-    std::strncpy(exrAttributes[a].name, attributes[a].name.c_str(), sizeof(exrAttributes[a].name) - 1);
-    std::strncpy(exrAttributes[a].type, attributes[a].type.c_str(), sizeof(exrAttributes[a].type) - 1);
-    exrAttributes[a].value = attributes[a].value.data();
-    exrAttributes[a].size = int(attributes[a].value.size());
-  }
-
-  EXRHeader header;
-  InitEXRHeader(&header);
-  header.num_custom_attributes = int(exrAttributes.size());
-  header.custom_attributes = exrAttributes.data();
-  header.num_channels = channelCount;
-  header.channels = channels.data();
-  header.pixel_types = pixelTypes.data();
-  header.requested_pixel_types = pixelTypes.data();
-  header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
-  EXRImage exrImage;
-  InitEXRImage(&exrImage);
-  exrImage.images = planePointers.data();
-  exrImage.width = int(image.width);
-  exrImage.height = int(image.height);
-  exrImage.num_channels = channelCount;
-
-  unsigned char* memory = nullptr;
-  const char* err = nullptr;
-  size_t size = SaveEXRImageToMemory(&exrImage, &header, &memory, &err);
-  if (size == 0) failWrite(path, "EXR encoding failed (" + takeExrMessage(err) + ")");
-  std::vector<unsigned char> bytes(memory, memory + size);
-  std::free(memory);
-  return bytes;
+std::vector<unsigned char> encodeExr(const RadianceImage& image) {
+  std::vector<ExrChannel> channels;
+  addChannels(channels, "", kColourChannels, image.mean);
+  addChannels(channels, "variance", kColourChannels, image.variance);
+  addChannels(channels, "albedo", kColourChannels, image.albedo);
+  addChannels(channels, "normal", kVectorChannels, image.normal);
+  if (!image.depth.empty()) channels.push_back({"depth.Z", image.depth.data(), 1});
+  if (!image.sampleCount.empty()) channels.push_back({"samples.X", image.sampleCount.data(), 1});
+  return encodeZipExr(image.width, image.height, std::move(channels),
+                      image.record ? recordAttributes(*image.record) : std::vector<HeaderAttribute>{});
 }
 
 // Pixels with a data window beyond kMaxImagePixels, or more than the file could hold at
@@ -242,7 +193,7 @@ void writeImage(const fs::path& path, const RadianceImage& image, const DisplayS
     bytes = encodePng(image.width, image.height, displayPixels(image, display));
     if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); render a smaller image");
   } else {
-    bytes = encodeExr(path, image);
+    bytes = encodeExr(image);
   }
   writeFileAtomically(path, bytes, "image");
 }

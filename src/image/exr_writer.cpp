@@ -1,0 +1,181 @@
+// The OpenEXR 2 file layout (openexr.com, "OpenEXR File Layout"): magic and version, header
+// attributes, the table of chunk offsets, then the chunks, each a block of 16 scanlines whose
+// channels are stored one after another per scanline, reordered and delta-coded, then
+// deflated.
+#include "image/exr_writer.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <exception>
+#include <initializer_list>
+#include <stdexcept>
+#include <thread>
+
+namespace wp {
+namespace {
+
+constexpr uint32_t kScanlinesPerZipBlock = 16;
+constexpr unsigned char kZipCompression = 3;  // OpenEXR's ZIP_COMPRESSION
+constexpr int32_t kFloatPixels = 2;            // OpenEXR's FLOAT pixel type
+// zlib's default level, as tinyexr and OpenEXR 2 compress: levels 4 and 1 wrote the instanced
+// scene's EXR (960x540 with its passes) 0.4% and 1.2% larger for 2% and 15% less time.
+constexpr int kDeflateLevel = Z_DEFAULT_COMPRESSION;
+// Names up to this length fit a version-2 file without its long-names flag.
+constexpr size_t kShortNameLength = 31;
+
+// Little-endian writes (OpenEXR's byte order).
+void putBytes(std::vector<unsigned char>& out, const void* data, size_t size) {
+  const unsigned char* bytes = static_cast<const unsigned char*>(data);
+  out.insert(out.end(), bytes, bytes + size);
+}
+
+template <typename T>
+void put(std::vector<unsigned char>& out, T value) {
+  static_assert(std::endian::native == std::endian::little, "the EXR writer stores native little-endian values");
+  putBytes(out, &value, sizeof(value));
+}
+
+
+void putString(std::vector<unsigned char>& out, const std::string& text) {
+  putBytes(out, text.c_str(), text.size() + 1);
+}
+
+void putAttribute(std::vector<unsigned char>& out, const std::string& name, const std::string& type,
+                  const std::vector<unsigned char>& value) {
+  putString(out, name);
+  putString(out, type);
+  put<int32_t>(out, int32_t(value.size()));
+  putBytes(out, value.data(), value.size());
+}
+
+std::vector<unsigned char> channelList(const std::vector<ExrChannel>& channels) {
+  std::vector<unsigned char> list;
+  for (const ExrChannel& c : channels) {
+    putString(list, c.name);
+    put<int32_t>(list, kFloatPixels);
+    put<uint32_t>(list, 0);  // pLinear and three reserved bytes
+    put<int32_t>(list, 1);   // x sampling
+    put<int32_t>(list, 1);   // y sampling
+  }
+  list.push_back(0);
+  return list;
+}
+
+std::vector<unsigned char> box(uint32_t width, uint32_t height) {
+  std::vector<unsigned char> value;
+  for (int32_t v : {0, 0, int32_t(width) - 1, int32_t(height) - 1}) put<int32_t>(value, v);
+  return value;
+}
+
+template <typename T>
+std::vector<unsigned char> bytesOf(std::initializer_list<T> values) {
+  std::vector<unsigned char> out;
+  for (T v : values) put<T>(out, v);
+  return out;
+}
+
+// The chunk of the block of scanlines [y0, y1): its first scanline, its size and its data,
+// deflated unless that would not make it smaller (a reader tells the two apart by size).
+std::vector<unsigned char> zipBlock(uint32_t width, uint32_t y0, uint32_t y1, const std::vector<ExrChannel>& channels) {
+  std::vector<float> values;
+  values.reserve(size_t(y1 - y0) * width * channels.size());
+  for (uint32_t y = y0; y < y1; ++y) {
+    for (const ExrChannel& c : channels) {
+      const float* row = c.values + size_t(y) * width * c.stride;
+      for (uint32_t x = 0; x < width; ++x) values.push_back(row[x * c.stride]);
+    }
+  }
+  static_assert(std::endian::native == std::endian::little, "the EXR writer stores native little-endian floats");
+  const unsigned char* raw = reinterpret_cast<const unsigned char*>(values.data());
+  const size_t rawSize = values.size() * sizeof(float);  // even
+  // The bytes of even offsets, then those of odd offsets: the high and low bytes of the floats
+  // then sit in long runs of similar values...
+  std::vector<unsigned char> coded(rawSize);
+  for (size_t i = 0; i < rawSize / 2; ++i) {
+    coded[i] = raw[2 * i];
+    coded[rawSize / 2 + i] = raw[2 * i + 1];
+  }
+  // ...which differences from the previous byte (plus 128, modulo 256) make small.
+  for (size_t i = rawSize - 1; i > 0; --i) coded[i] = static_cast<unsigned char>(coded[i] - coded[i - 1] + 128);
+
+  uLongf deflatedSize = compressBound(uLong(rawSize));
+  std::vector<unsigned char> deflated(deflatedSize);
+  if (compress2(deflated.data(), &deflatedSize, coded.data(), uLong(rawSize), kDeflateLevel) != Z_OK) {
+    throw std::runtime_error("zlib could not compress a block of scanlines (out of memory?)");
+  }
+  const bool stored = deflatedSize >= rawSize;
+  const size_t dataSize = stored ? rawSize : size_t(deflatedSize);
+  std::vector<unsigned char> chunk;
+  chunk.reserve(8 + dataSize);
+  put<int32_t>(chunk, int32_t(y0));
+  put<int32_t>(chunk, int32_t(dataSize));
+  putBytes(chunk, stored ? raw : deflated.data(), dataSize);
+  return chunk;
+}
+
+// Every block's chunk, compressed by as many threads as the machine has cores.
+std::vector<std::vector<unsigned char>> zipBlocks(uint32_t width, uint32_t height,
+                                                  const std::vector<ExrChannel>& channels) {
+  const uint32_t count = (height + kScanlinesPerZipBlock - 1) / kScanlinesPerZipBlock;
+  std::vector<std::vector<unsigned char>> chunks(count);
+  std::atomic<uint32_t> next{0};
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  auto work = [&] {
+    for (uint32_t b = next++; b < count && !failed; b = next++) {
+      try {
+        const uint32_t y0 = b * kScanlinesPerZipBlock;
+        chunks[b] = zipBlock(width, y0, std::min(height, y0 + kScanlinesPerZipBlock), channels);
+      } catch (...) {
+        if (!failed.exchange(true)) failure = std::current_exception();
+      }
+    }
+  };
+  const uint32_t threads = std::clamp(std::thread::hardware_concurrency(), 1u, count);
+  std::vector<std::thread> helpers;
+  for (uint32_t t = 1; t < threads; ++t) helpers.emplace_back(work);
+  work();
+  for (std::thread& h : helpers) h.join();
+  if (failure) std::rethrow_exception(failure);
+  return chunks;
+}
+
+}  // namespace
+
+std::vector<unsigned char> encodeZipExr(uint32_t width, uint32_t height, std::vector<ExrChannel> channels,
+                                        const std::vector<HeaderAttribute>& attributes) {
+  std::sort(channels.begin(), channels.end(), [](const ExrChannel& a, const ExrChannel& b) { return a.name < b.name; });
+  bool longNames = false;
+  for (const ExrChannel& c : channels) longNames = longNames || c.name.size() > kShortNameLength;
+  for (const HeaderAttribute& a : attributes) {
+    longNames = longNames || a.name.size() > kShortNameLength || a.type.size() > kShortNameLength;
+  }
+
+  std::vector<unsigned char> out = {0x76, 0x2f, 0x31, 0x01};       // magic number
+  out.insert(out.end(), {2, static_cast<unsigned char>(longNames ? 0x04 : 0x00), 0, 0});  // version 2, scanlines, single part
+  putAttribute(out, "channels", "chlist", channelList(channels));
+  putAttribute(out, "compression", "compression", {kZipCompression});
+  putAttribute(out, "dataWindow", "box2i", box(width, height));
+  putAttribute(out, "displayWindow", "box2i", box(width, height));
+  putAttribute(out, "lineOrder", "lineOrder", {0});  // increasing y
+  putAttribute(out, "pixelAspectRatio", "float", bytesOf<float>({1.0f}));
+  putAttribute(out, "screenWindowCenter", "v2f", bytesOf<float>({0.0f, 0.0f}));
+  putAttribute(out, "screenWindowWidth", "float", bytesOf<float>({1.0f}));
+  for (const HeaderAttribute& a : attributes) putAttribute(out, a.name, a.type, a.value);
+  out.push_back(0);  // end of the header
+
+  const std::vector<std::vector<unsigned char>> chunks = zipBlocks(width, height, channels);
+  uint64_t offset = out.size() + chunks.size() * sizeof(uint64_t);
+  for (const std::vector<unsigned char>& c : chunks) {
+    put<uint64_t>(out, offset);
+    offset += c.size();
+  }
+  out.reserve(offset);
+  for (const std::vector<unsigned char>& c : chunks) putBytes(out, c.data(), c.size());
+  return out;
+}
+
+}  // namespace wp
