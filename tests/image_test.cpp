@@ -172,7 +172,9 @@ TEST_F(ImageIoTest, ExrRoundTripOfEveryPassAndTheRecordIsBitExact) {
   wp::RadianceImage noiseOnly;
   noiseOnly.width = 19;
   noiseOnly.height = 3;
-  for (uint32_t i = 0; i < noiseOnly.width * noiseOnly.height; ++i) noiseOnly.mean.emplace_back(noise(), noise(), noise());
+  for (uint32_t i = 0; i < noiseOnly.width * noiseOnly.height; ++i) {
+    noiseOnly.mean.emplace_back(noise(), noise(), noise());
+  }
   wp::writeImage(dir / "noise.exr", noiseOnly);
   EXPECT_TRUE(sameBits(wp::readExr(dir / "noise.exr").mean, noiseOnly.mean));
 }

@@ -50,7 +50,8 @@ TEST(ProgramOptions, CpuDevicesBuildWorkItemsAsThreadsGpusAsLanes) {
   EXPECT_EQ(openClProgramOptions(gpu, false, false).find(threads), std::string::npos);
   EXPECT_EQ(openClProgramOptions(gpu, true, true).find(threads), std::string::npos);
   EXPECT_EQ(openClProgramOptions(gpu, true, true), "-cl-std=CL1.2 -cl-denorms-are-zero -Werror -DWP_MOTION_BLUR=1");
-  EXPECT_EQ(openClProgramOptions(cpu, false, false), "-cl-std=CL1.2 -cl-denorms-are-zero -DWP_WORK_ITEMS_ARE_THREADS=1");
+  EXPECT_EQ(openClProgramOptions(cpu, false, false),
+            "-cl-std=CL1.2 -cl-denorms-are-zero -DWP_WORK_ITEMS_ARE_THREADS=1");
 }
 
 // Every device flushes denormal floats to zero: a CPU pays a microcode assist for each

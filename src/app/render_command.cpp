@@ -47,7 +47,7 @@ void resolveImageSize(RenderOptions& options, const Scene& scene) {
 
 // Seconds a render spends outside its passes, for --timings: on a big scene the set-up is
 // part of what a user waits for, and must stay small beside the tracing.
-struct SetupSeconds {
+struct TimeOutsidePasses {
   double device = 0.0;  // the backend and its device opened
   double load = 0.0;    // the glTF file (and sky) read and checked
   double pack = 0.0;    // BVHs built and the scene packed (a later frame's: updated)
@@ -65,11 +65,11 @@ double peakMemoryMiB() {
   return double(usage.ru_maxrss) / 1024.0;
 }
 
-void printTimings(const RenderStats& stats, const SetupSeconds& setup, const GpuScene& gpuScene,
+void printTimings(const RenderStats& stats, const TimeOutsidePasses& outside, const GpuScene& gpuScene,
                   const SceneUpdateTimes* update) {
   std::printf("outside the passes (ms): device %.1f, scene load %.1f, BVH and packing %.1f, upload %.1f, "
               "image write %.1f\n",
-              setup.device * 1e3, setup.load * 1e3, setup.pack * 1e3, setup.upload * 1e3, setup.write * 1e3);
+              outside.device * 1e3, outside.load * 1e3, outside.pack * 1e3, outside.upload * 1e3, outside.write * 1e3);
   if (update) {
     std::printf("scene update: %.1f ms (refit %.1f ms of %u meshes, %u rebuilt in %.1f ms, triangles %.1f ms, "
                 "top level %.1f ms, lights %.1f ms)\n",
@@ -126,14 +126,14 @@ Camera frameAutomatically(const RenderOptions& o, const Scene& scene, const GpuS
 // line. Returns 0, or the exit code of a render a signal interrupted (nothing is written
 // then but its checkpoint).
 // A scene without a camera is framed once, from its first pose, in `automaticCamera`.
-// `setup` holds the seconds spent opening the device and loading the scene for this frame
+// `outside` holds the seconds spent opening the device and loading the scene for this frame
 // (0 after the first); renderFrame adds its own.
 int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& backend, PoseUploader& uploader,
                 Scene scene, const std::string& output, std::optional<Camera>& automaticCamera,
-                SetupSeconds setup) {
+                TimeOutsidePasses outside) {
   auto wallStart = std::chrono::steady_clock::now();
   const GpuScene& gpuScene = uploader.gpuSceneOf(scene);
-  setup.pack = secondsSince(wallStart);
+  outside.pack = secondsSince(wallStart);
   if (!scene.hasCamera) {
     if (!automaticCamera) automaticCamera = frameAutomatically(o, scene, gpuScene);
     scene.camera = *automaticCamera;
@@ -141,7 +141,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   applyCameraFlags(o.camera, scene.camera, gpuScene);
   auto uploadStart = std::chrono::steady_clock::now();
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
-  setup.upload = secondsSince(uploadStart);
+  outside.upload = secondsSince(uploadStart);
   if (renderer.tileCount() > 1) {
     if (!o.checkpoint.path.empty()) {
       throw Error("the image does not fit " + backend.deviceName() + " at once and is rendered in " +
@@ -185,7 +185,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   image.record = renderRecord(o.settings, here.identity, display, o.camera.autoExposure);
   keepSelectedPasses(image, o.passes);
   writeImage(output, image, display);
-  setup.write = secondsSince(writeStart);
+  outside.write = secondsSince(writeStart);
   noteIfAlmostBlack(image, display, scene, output);
   if (!o.checkpoint.path.empty()) std::filesystem::remove(o.checkpoint.path);
 
@@ -198,7 +198,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
               rays / stats.seconds * 1e-6, double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6,
               backend.deviceName().c_str());
   if (o.timings) {
-    printTimings(stats, setup, gpuScene, uploader.lastUpdate());
+    printTimings(stats, outside, gpuScene, uploader.lastUpdate());
   }
   return 0;
 }
@@ -417,13 +417,13 @@ int runRender(RenderOptions o) {
 
   // The device first: a missing or unusable one is one error line before any scene work.
   BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
-  SetupSeconds setup;
+  TimeOutsidePasses outside;
   auto start = std::chrono::steady_clock::now();
   std::unique_ptr<Backend> backend = createBackend(choice);
-  setup.device = secondsSince(start);
+  outside.device = secondsSince(start);
   start = std::chrono::steady_clock::now();
   const Scene scene = loadSceneWithSky(o);
-  setup.load = secondsSince(start);
+  outside.load = secondsSince(start);
   applyPartFlags(o.settings, o.samples, o.region);
   if (!o.frames.empty() && !scene.animation) {
     note(o.scene + " has no animation: every frame is the same image");
@@ -438,9 +438,9 @@ int runRender(RenderOptions o) {
   for (uint32_t frame = frames.first;; ++frame) {
     const std::optional<double> time = o.frames.empty() ? o.time : std::optional<double>(frame / o.fps);
     const int code = renderFrame(o, choice, *backend, uploader, time ? poseSceneOverShutter(scene, *time, shutter) : scene,
-                                 framePath(o.output, frame), automaticCamera, setup);
+                                 framePath(o.output, frame), automaticCamera, outside);
     if (code != 0) return code;
-    setup = {};  // the device and the scene serve every frame
+    outside = {};  // the device and the scene serve every frame
     if (frame == frames.last) break;  // tested here, as frames.last may be the largest uint32_t
   }
   return 0;

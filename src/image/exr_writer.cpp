@@ -155,7 +155,9 @@ std::vector<unsigned char> encodeZipExr(uint32_t width, uint32_t height, std::ve
   }
 
   std::vector<unsigned char> out = {0x76, 0x2f, 0x31, 0x01};       // magic number
-  out.insert(out.end(), {2, static_cast<unsigned char>(longNames ? 0x04 : 0x00), 0, 0});  // version 2, scanlines, single part
+  // Version 2, one part of scanlines; the 0x04 of the second byte (bit 10) allows names
+  // longer than 31 bytes.
+  out.insert(out.end(), {2, static_cast<unsigned char>(longNames ? 0x04 : 0x00), 0, 0});
   putAttribute(out, "channels", "chlist", channelList(channels));
   putAttribute(out, "compression", "compression", {kZipCompression});
   putAttribute(out, "dataWindow", "box2i", box(width, height));

@@ -26,8 +26,8 @@ constexpr uint32_t kPassConstantsArgument = [] {
 
 std::string openClProgramOptions(const OpenClDeviceInfo& device, bool validate, bool motion) {
   // Denormal floats flushed to zero, as GPUs do: a CPU takes a microcode assist of a hundred
-  // cycles or more on each denormal operand, and the stages make some (a pinhole's 1 / focus
-  // distance at infinity, the unused lane of a vec3 in a vector register). PoCL's generate
+  // cycles or more on each denormal operand, and the stages make some (a pinhole's f / D with
+  // the focus D at infinity, the unused lane of a vec3 in a vector register). PoCL's generate
   // took twice as long, its extend and connect 10% longer; images are bit-identical.
   std::string options = "-cl-std=CL1.2 -cl-denorms-are-zero";
   if (validate) {

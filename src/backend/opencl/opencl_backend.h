@@ -28,9 +28,9 @@ enum class ClDispatch {
 };
 
 // The options the kernels are built with on `device`: OpenCL C 1.2 with denormals flushed
-// to zero; warnings as errors with
-// `validate`; WP_MOTION_BLUR for the `motion` variant; WP_WORK_ITEMS_ARE_THREADS on a CPU
-// device, where each work-item runs as a thread's scalar code (prelude_cl.h).
+// to zero; warnings as errors with `validate`; WP_MOTION_BLUR for the `motion` variant;
+// WP_WORK_ITEMS_ARE_THREADS on a CPU device, where each work-item runs as a thread's scalar
+// code (prelude_cl.h).
 std::string openClProgramOptions(const OpenClDeviceInfo& device, bool validate, bool motion);
 
 class OpenClBackend final : public Backend {
