@@ -11,7 +11,9 @@
 #include <bit>
 #include <exception>
 #include <initializer_list>
+#include <new>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 namespace wp {
@@ -103,8 +105,12 @@ std::vector<unsigned char> zipBlock(uint32_t width, uint32_t y0, uint32_t y1, co
 
   uLongf deflatedSize = compressBound(uLong(rawSize));
   std::vector<unsigned char> deflated(deflatedSize);
-  if (compress2(deflated.data(), &deflatedSize, coded.data(), uLong(rawSize), kDeflateLevel) != Z_OK) {
-    throw std::runtime_error("zlib could not compress a block of scanlines (out of memory?)");
+  const int result = compress2(deflated.data(), &deflatedSize, coded.data(), uLong(rawSize), kDeflateLevel);
+  if (result == Z_MEM_ERROR) {
+    throw std::bad_alloc();  // said as "out of host memory" (main.cpp)
+  }
+  if (result != Z_OK) {  // compressBound's room is always enough
+    throw std::logic_error("zlib's compress2 returned " + std::to_string(result) + " for a block of scanlines");
   }
   const bool stored = deflatedSize >= rawSize;
   const size_t dataSize = stored ? rawSize : size_t(deflatedSize);
