@@ -28,7 +28,9 @@ constexpr int kDeflateLevel = Z_DEFAULT_COMPRESSION;
 // Names up to this length fit a version-2 file without its long-names flag.
 constexpr size_t kShortNameLength = 31;
 
-// Little-endian writes (OpenEXR's byte order).
+// Numbers are written as this machine stores them, which is OpenEXR's byte order.
+static_assert(std::endian::native == std::endian::little, "the EXR writer needs a little-endian machine");
+
 void putBytes(std::vector<unsigned char>& out, const void* data, size_t size) {
   const unsigned char* bytes = static_cast<const unsigned char*>(data);
   out.insert(out.end(), bytes, bytes + size);
@@ -36,10 +38,8 @@ void putBytes(std::vector<unsigned char>& out, const void* data, size_t size) {
 
 template <typename T>
 void put(std::vector<unsigned char>& out, T value) {
-  static_assert(std::endian::native == std::endian::little, "the EXR writer stores native little-endian values");
   putBytes(out, &value, sizeof(value));
 }
-
 
 void putString(std::vector<unsigned char>& out, const std::string& text) {
   putBytes(out, text.c_str(), text.size() + 1);
@@ -67,16 +67,7 @@ std::vector<unsigned char> channelList(const std::vector<ExrChannel>& channels) 
 }
 
 std::vector<unsigned char> box(uint32_t width, uint32_t height) {
-  std::vector<unsigned char> value;
-  for (int32_t v : {0, 0, int32_t(width) - 1, int32_t(height) - 1}) put<int32_t>(value, v);
-  return value;
-}
-
-template <typename T>
-std::vector<unsigned char> bytesOf(std::initializer_list<T> values) {
-  std::vector<unsigned char> out;
-  for (T v : values) put<T>(out, v);
-  return out;
+  return exrBytes<int32_t>({0, 0, int32_t(width) - 1, int32_t(height) - 1});
 }
 
 // The chunk of the block of scanlines [y0, y1): its first scanline, its size and its data,
@@ -90,7 +81,6 @@ std::vector<unsigned char> zipBlock(uint32_t width, uint32_t y0, uint32_t y1, co
       for (uint32_t x = 0; x < width; ++x) values.push_back(row[x * c.stride]);
     }
   }
-  static_assert(std::endian::native == std::endian::little, "the EXR writer stores native little-endian floats");
   const unsigned char* raw = reinterpret_cast<const unsigned char*>(values.data());
   const size_t rawSize = values.size() * sizeof(float);  // even
   // The bytes of even offsets, then those of odd offsets: the high and low bytes of the floats
@@ -169,9 +159,9 @@ std::vector<unsigned char> encodeZipExr(uint32_t width, uint32_t height, std::ve
   putAttribute(out, "dataWindow", "box2i", box(width, height));
   putAttribute(out, "displayWindow", "box2i", box(width, height));
   putAttribute(out, "lineOrder", "lineOrder", {0});  // increasing y
-  putAttribute(out, "pixelAspectRatio", "float", bytesOf<float>({1.0f}));
-  putAttribute(out, "screenWindowCenter", "v2f", bytesOf<float>({0.0f, 0.0f}));
-  putAttribute(out, "screenWindowWidth", "float", bytesOf<float>({1.0f}));
+  putAttribute(out, "pixelAspectRatio", "float", exrBytes<float>({1.0f}));
+  putAttribute(out, "screenWindowCenter", "v2f", exrBytes<float>({0.0f, 0.0f}));
+  putAttribute(out, "screenWindowWidth", "float", exrBytes<float>({1.0f}));
   for (const HeaderAttribute& a : attributes) putAttribute(out, a.name, a.type, a.value);
   out.push_back(0);  // end of the header
 

@@ -6,19 +6,14 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "image/exr_writer.h"
 
 namespace wp {
 
 namespace {
 
-void appendInt(std::vector<unsigned char>& bytes, uint32_t value) {
-  for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<unsigned char>(value >> (8 * b)));
-}
-
 HeaderAttribute ints(const char* name, const char* type, std::initializer_list<uint32_t> values) {
-  HeaderAttribute a{name, type, {}};
-  for (uint32_t v : values) appendInt(a.value, v);
-  return a;
+  return {name, type, exrBytes<uint32_t>(values)};
 }
 
 HeaderAttribute text(const char* name, const std::string& value) {
