@@ -21,9 +21,10 @@
 //             (read and written), WRITE (a queue the stage appends to), TEXEL_VIEW (Vulkan:
 //             the queue of the same name again, read as texels by the next stage), CONSTANT
 //             (read-only texels the backend uploads once from a header's table);
-//   backends  ALL, or VULKAN for what OpenCL does without (its kernels read a queue through
-//             the queue's own pointer). Rows for ALL come first: OpenCL's kernel argument i
-//             is binding i.
+//   backends  ALL, or VULKAN for what OpenCL and C++ do without (their kernels read a queue
+//             through the queue's own pointer, and shade every material class in one go): no
+//             kernel argument, no DeviceBuffers member. Rows for ALL come first: OpenCL's
+//             kernel argument i is binding i.
 // Read-only data goes through texel buffers on Vulkan: on lavapipe a texel fetch is a SIMD
 // gather where a storage-buffer load is a per-lane scalar loop, and on GPUs it goes through
 // the texture cache.
@@ -51,7 +52,8 @@
   X(rays, 20, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \
   X(hits, 21, HitRecord, 1, RECORD, TEXEL_VIEW, VULKAN)                           \
   X(shadowRays, 22, ShadowRay, 3, RECORD, TEXEL_VIEW, VULKAN)                      \
-  X(bsdfTables, 23, float, 0, R32, CONSTANT, VULKAN)
+  X(bsdfTables, 23, float, 0, R32, CONSTANT, VULKAN)                             \
+  X(deferredHits, 24, uint, 0, NONE, STORAGE, VULKAN)
 
 // What the rows mean:
 //   params          RenderParams, the render's settings
@@ -72,6 +74,8 @@
 //   bsdfTables      the BSDF's constant tables (bsdf_table_lookup.h), from the header's own
 //                   array. Vulkan only: OpenCL and C++ read that array as a constant, but
 //                   llvmpipe takes minutes to compile a shader that holds it.
+//   deferredHits    uint[maxPaths]: the deferred shade queue (queues.h), entries of the
+//                   ray queue. Vulkan only: OpenCL shades every material in one kernel.
 
 WP_BEGIN
 
@@ -79,7 +83,10 @@ WP_BEGIN
 // C++ and OpenCL: every buffer but the parameters as a pointer in one bundle, which the
 // functions that read buffers take first (WP_BUFFERS) and pass on (WP_BUFFERS_ARG).
 #define WP_DEVICE_BUFFER_MEMBER(name, binding, Element, stride, format, access, backends) \
-  WP_DEVICE_BUFFER_MEMBER_##access(name, Element)
+  WP_ON_OPENCL_##backends(WP_DEVICE_BUFFER_MEMBER_##access(name, Element))
+// What a row gives C++ and OpenCL: all of it for ALL, nothing for VULKAN.
+#define WP_ON_OPENCL_ALL(x) x
+#define WP_ON_OPENCL_VULKAN(x)
 #define WP_DEVICE_BUFFER_MEMBER_UNIFORM(name, Element)
 #define WP_DEVICE_BUFFER_MEMBER_TEXELS(name, Element) WP_GLOBAL_PTR(Element) name;
 #define WP_DEVICE_BUFFER_MEMBER_STORAGE(name, Element) WP_GLOBAL_MUTABLE_PTR(Element) name;

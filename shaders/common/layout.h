@@ -365,6 +365,35 @@ WP_FN uint materialClearcoatNormalTexture(GpuMaterial m) { return m.clearcoatMap
 WP_FN uint materialAlphaMode(GpuMaterial m) { return m.alphaInfo.x; }
 WP_FN float materialAlphaCutoff(GpuMaterial m) { return asFloat(m.alphaInfo.y); }
 
+// What a material needs of the shade stage's code, as bits: ORed over the materials, the
+// scene's features (GpuScene::features); none or some, its shade class (below). glTF's BRDF
+// needs the microfacet code, its clear coat or sheen the layers, its transmission the glass;
+// ideal diffuse and unlit materials need none of them.
+#define WP_NEEDS_MICROFACET 1u
+#define WP_NEEDS_LAYERS 2u
+#define WP_NEEDS_TRANSMISSION 4u
+WP_FN uint materialShadeNeeds(GpuMaterial m) {
+  uint kind = materialKind(m);
+  if (kind == WP_MATERIAL_LAMBERT || kind == WP_MATERIAL_UNLIT) {
+    return 0u;
+  }
+  uint needs = WP_NEEDS_MICROFACET;
+  if (materialClearcoat(m) > 0.0f || max(m.sheen.x, max(m.sheen.y, m.sheen.z)) > 0.0f) {
+    needs |= WP_NEEDS_LAYERS;
+  }
+  if (materialTransmission(m) > 0.0f) {
+    needs |= WP_NEEDS_TRANSMISSION;
+  }
+  return needs;
+}
+
+// Shade classes (Vulkan, shade.comp): in a scene with both, the misses and the hits on
+// materials that need nothing (materialShadeNeeds: ideal diffuse, unlit) are shaded by a
+// pipeline without glTF's BRDF, which defers the other hits to the deferred shade queue
+// (queues.h) for a pipeline with it.
+#define WP_SHADE_CLASS_DIFFUSE 0u
+#define WP_SHADE_CLASS_MICROFACET 1u
+
 // GpuLight.info.y: what the light is, in the low bits, and its flags above them.
 #define WP_LIGHT_TRIANGLE 0u     // an emissive triangle (an area light)
 #define WP_LIGHT_POINT 1u        // KHR_lights_punctual: a point
@@ -564,6 +593,8 @@ WP_STRUCT(QueueCounters)
   uvec4 totals;           // x: extension rays traced this pass, y: shadow rays
   uvec4 extendDispatch;   // xyz: VkDispatchIndirectCommand for extend and shade
   uvec4 connectDispatch;  // xyz: VkDispatchIndirectCommand for connect
+  uvec4 deferredShades;   // x: the deferred shade queue; yzw: unused
+  uvec4 deferredShadeDispatch;  // xyz: VkDispatchIndirectCommand for shade over it
 WP_STRUCT_END(QueueCounters)
 #define WP_COUNTER_RAYS 0u            // + queue (0 or 1)
 #define WP_COUNTER_SHADOW_RAYS 2u     // + bounce parity
@@ -571,7 +602,9 @@ WP_STRUCT_END(QueueCounters)
 #define WP_COUNTER_TOTAL_SHADOW_RAYS 5u
 #define WP_COUNTER_EXTEND_DISPATCH 8u
 #define WP_COUNTER_CONNECT_DISPATCH 12u
-#define WP_COUNTER_WORDS 16u
+#define WP_COUNTER_DEFERRED_SHADES 16u
+#define WP_COUNTER_DEFERRED_SHADE_DISPATCH 20u
+#define WP_COUNTER_WORDS 24u
 WP_FN uint tracedRays(QueueCounters c) { return c.totals.x; }
 WP_FN uint tracedShadowRays(QueueCounters c) { return c.totals.y; }
 

@@ -38,6 +38,16 @@ WP_FN WorkQueue shadowQueue(uint bounce) {
   return q;
 }
 
+// The queue of the hits that Vulkan's first shade pipeline deferred to the second
+// (shade.comp: WP_SHADE_CLASS_MICROFACET), as entries of the bounce's ray queue, in the
+// deferredHits buffer.
+WP_FN WorkQueue deferredShadeQueue() {
+  WorkQueue q;
+  q.sizeWord = WP_COUNTER_DEFERRED_SHADES;
+  q.firstEntry = 0u;
+  return q;
+}
+
 // Entry `i` of the queue in its buffer.
 WP_FN uint queueEntry(WorkQueue q, uint i) { return q.firstEntry + i; }
 
@@ -97,8 +107,8 @@ WP_FN void finishPassQueues(WP_BUFFERS uint maxPaths) {
 
 // Advance, after shade of `bounce`: adds the rays it traced and the shadow rays it spawned
 // to the totals, sizes connect of this bounce and extend and shade of the next, and empties
-// the queues their next writers append to: the ray queue just traced (bounce + 2's) and the
-// shadow queue of bounce + 1.
+// the queues their next writers append to: the ray queue just traced (bounce + 2's), the
+// shadow queue of bounce + 1 and the deferred shade queue.
 WP_FN void advanceQueues(WP_BUFFERS uint bounce, uint maxPaths) {
   uint traced = queueSize(WP_BUFFERS_ARG rayQueue(bounce, maxPaths));
   uint continuing = queueSize(WP_BUFFERS_ARG rayQueue(bounce + 1u, maxPaths));
@@ -109,6 +119,11 @@ WP_FN void advanceQueues(WP_BUFFERS uint bounce, uint maxPaths) {
   writeDispatchArguments(WP_BUFFERS_ARG WP_COUNTER_CONNECT_DISPATCH, shadows);
   resetQueue(WP_BUFFERS_ARG rayQueue(bounce, maxPaths));
   resetQueue(WP_BUFFERS_ARG shadowQueue(bounce + 1u));
+  // The deferred shade queue too, and its dispatch sized to no workgroups: shade's first
+  // pipeline raises x to cover what it appends (atomicMax) and sets y and z to 1 (the
+  // counters configure zeroes are as empty).
+  resetQueue(WP_BUFFERS_ARG deferredShadeQueue());
+  WP_BUFFER(counters)[WP_COUNTER_DEFERRED_SHADE_DISPATCH] = 0u;
 }
 
 WP_END

@@ -91,6 +91,20 @@ WP_FN vec4 colorAt(GpuTriangleShading shading, vec2 b) {
          unpackUnorm8(vertexColor2(shading)) * b.y;
 }
 
+// The material of the surface a hit reached (hitInstanceField, hitPrimitive), as surfaceAt
+// finds it, without reconstructing the surface: what Vulkan's first shade pipeline sorts
+// the hits into shade classes by (shade.comp). An instance's kind and material do not move.
+WP_FN uint hitMaterial(WP_BUFFERS uint instanceField, uint primitive) {
+  if ((instanceField & WP_HIT_PLANE) != 0u) {
+    return planeMaterial(WP_LOAD(planes, instanceField & ~WP_HIT_PLANE));
+  }
+  GpuInstance inst = WP_LOAD(instances, instanceField);
+  if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
+    return instanceSphereMaterial(inst);
+  }
+  return triangleMaterial(WP_LOAD(triangles, primitive));
+}
+
 // `instanceField` and `primitive` are hitInstanceField and hitPrimitive of a hit at the
 // normalized shutter time `time` the ray was traced at (moving instances are placed then).
 WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {

@@ -9,7 +9,7 @@
 // (so the host sets each buffer once for all kernels); the pass constants follow, by value.
 // The parameters come as a constant pointer, paramsBuffer.
 #define WP_CL_ARGUMENT(name, binding, Element, stride, format, access, backends) \
-  WP_CL_ARGUMENT_##access(name, Element)
+  WP_ON_OPENCL_##backends(WP_CL_ARGUMENT_##access(name, Element))
 #define WP_CL_ARGUMENT_UNIFORM(name, Element) __constant Element *name##Buffer,
 #define WP_CL_ARGUMENT_TEXELS(name, Element) __global const Element *name,
 #define WP_CL_ARGUMENT_STORAGE(name, Element) __global Element *name,
@@ -30,7 +30,7 @@
   }                                                                    \
   barrier(CLK_LOCAL_MEM_FENCE);
 #define WP_CL_BUNDLE_MEMBER(name, binding, Element, stride, format, access, backends) \
-  WP_CL_BUNDLE_MEMBER_##access(name)
+  WP_ON_OPENCL_##backends(WP_CL_BUNDLE_MEMBER_##access(name))
 #define WP_CL_BUNDLE_MEMBER_UNIFORM(name)
 #define WP_CL_BUNDLE_MEMBER_TEXELS(name) name,
 #define WP_CL_BUNDLE_MEMBER_STORAGE(name) name,

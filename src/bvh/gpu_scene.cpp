@@ -497,15 +497,39 @@ SceneFeatures GpuScene::features() const {
   f.alphaTested = std::any_of(triangles.begin(), triangles.end(),
                               [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
   f.textured = !textures.empty();
+  uint32_t needs = 0;
   for (const gpu::GpuMaterial& m : materials) {
-    const uint32_t kind = gpu::materialKind(m);
-    const bool gltf = kind != WP_MATERIAL_LAMBERT && kind != WP_MATERIAL_UNLIT;
-    f.layered = f.layered || (gltf && (gpu::materialClearcoat(m) > 0.0f ||
-                                       gpu::maxComponent(gpu::materialSheenColor(m)) > 0.0f));
-    f.transmissive = f.transmissive || (gltf && gpu::materialTransmission(m) > 0.0f);
-    f.microfacet = f.microfacet || gltf;
+    needs |= gpu::materialShadeNeeds(m);
   }
+  return f.withNeeds(needs);
+}
+
+SceneFeatures SceneFeatures::withNeeds(uint32_t needs) const {
+  SceneFeatures f = *this;
+  f.microfacet = (needs & WP_NEEDS_MICROFACET) != 0;
+  f.layered = (needs & WP_NEEDS_LAYERS) != 0;
+  f.transmissive = (needs & WP_NEEDS_TRANSMISSION) != 0;
   return f;
+}
+
+bool GpuScene::hasBothShadeClasses() const {
+  // The materials some surface has: one that nothing uses would only cost a pipeline.
+  std::vector<bool> used(materials.size(), false);
+  auto use = [&](uint32_t material) {
+    if (material < used.size()) used[material] = true;
+  };
+  for (const gpu::GpuTriangle& t : triangles) use(gpu::triangleMaterial(t));
+  for (uint32_t i = 0; i < placedInstances; ++i) {
+    if (gpu::instanceKind(instances[i]) == WP_INSTANCE_SPHERE) use(gpu::instanceSphereMaterial(instances[i]));
+  }
+  for (const gpu::GpuPlane& p : planes) use(gpu::planeMaterial(p));
+  bool diffuse = false;
+  bool microfacet = false;
+  for (size_t m = 0; m < materials.size(); ++m) {
+    if (!used[m]) continue;
+    (gpu::materialShadeNeeds(materials[m]) == 0 ? diffuse : microfacet) = true;
+  }
+  return diffuse && microfacet;
 }
 
 GpuScene packScene(const Scene& scene) {

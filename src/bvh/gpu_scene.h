@@ -29,6 +29,9 @@ struct SceneFeatures {
   bool textured = false;      // a material has a texture (texture.h)
   bool transmissive = false;  // a material has transmission: glass (material.h)
   bool microfacet = false;    // a material is glTF's BRDF, not ideal diffuse or unlit (bsdf.h)
+  // These features with the material ones (layers, transmission, microfacet) as `needs`
+  // says (WP_NEEDS_* bits, materialShadeNeeds).
+  SceneFeatures withNeeds(uint32_t needs) const;
   bool operator==(const SceneFeatures&) const = default;
 };
 
@@ -52,6 +55,10 @@ struct GpuScene {
   // What the scene uses, read from its records (so any GpuScene, packed or built by hand,
   // gets the stages its data needs).
   SceneFeatures features() const;
+  // Whether the scene's surfaces have both shade classes (layout.h): materials that need
+  // glTF's BRDF and materials that need none of it (materialShadeNeeds 0). Vulkan then shades
+  // each class with a pipeline of its own (shade.comp).
+  bool hasBothShadeClasses() const;
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
   // The light table: world-space emissive triangles (for each still mesh instance in

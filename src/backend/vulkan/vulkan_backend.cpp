@@ -27,11 +27,6 @@ namespace {
 // Two timestamps per dispatch is ample: a pass has 2 + 4 * (bounces + 2) dispatches.
 constexpr uint32_t kMaxQueries = 1024;
 
-struct SpirvCode {
-  const uint32_t* words;
-  size_t bytes;
-};
-
 // The stage's code with or without motion blur (the stages that never place an instance
 // have one build, shaders/CMakeLists.txt).
 SpirvCode spirvFor(Kernel kernel, bool motion) {
@@ -66,6 +61,10 @@ VkDescriptorType descriptorType(uint32_t binding) {
 
 // Bytes of one texel of the view a texel-buffer binding is read through (bindings.glsl).
 uint64_t texelBytes(uint32_t binding) { return gpu::kBindings[binding].format == gpu::TexelFormat::R32ui ? 4 : 16; }
+
+// Device memory per path in flight: the queues of both backends and the deferred shade
+// queue (shade.comp).
+constexpr uint64_t kVulkanBytesPerPath = kBytesPerPath + sizeof(uint32_t);
 
 // Storage for the queues, also read as texels by the next stage.
 constexpr VkBufferUsageFlags kQueueUsage =
@@ -127,6 +126,7 @@ VulkanBackend::~VulkanBackend() {
   for (VkPipeline pipeline : pipelines_) {
     vkDestroyPipeline(device, pipeline, nullptr);
   }
+  vkDestroyPipeline(device, microfacetShadePipeline_, nullptr);
   vkDestroyPipelineLayout(device, pipelineLayout_, nullptr);
   vkDestroyDescriptorSetLayout(device, setLayout_, nullptr);
   // Buffers are members and release themselves before context_ is destroyed.
@@ -138,6 +138,7 @@ VulkanBackend::~VulkanBackend() {
   shadowRays_ = {};
   pathRadiance_ = {};
   pathFeatures_ = {};
+  deferredHits_ = {};
   counters_ = {};
   countersReadback_ = {};
   accumulation_ = {};
@@ -155,12 +156,12 @@ uint32_t VulkanBackend::maxPathsInFlight() const {
   // state may take half the memory, the rest is for the scene and the image.
   uint64_t byStorage = context_->limits.writable.bytes / (2 * sizeof(gpu::PathRay));
   uint64_t byTexels = uint64_t(limits.maxTexelBufferElements) / (2 * sizeof(gpu::PathRay) / 16);
-  uint64_t byMemory = context_->limits.memory.bytes / 2 / kBytesPerPath;
+  uint64_t byMemory = context_->limits.memory.bytes / 2 / kVulkanBytesPerPath;
   return uint32_t(std::min({byDispatch, byStorage, byTexels, byMemory, uint64_t(UINT32_MAX)}));
 }
 
 uint64_t VulkanBackend::pathStateBytes(uint64_t maxPaths) const {
-  return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters);
+  return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kVulkanBytesPerPath + sizeof(gpu::QueueCounters);
 }
 
 uint64_t VulkanBackend::maxAccumulationPixels(uint32_t maxPaths) const {
@@ -193,11 +194,11 @@ void VulkanBackend::createLayouts() {
   VK_CHECK(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout_));
 }
 
-VkPipeline VulkanBackend::createPipeline(const uint32_t* words, size_t bytes) {
+VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& features, uint32_t shadeClass) {
   VkDevice device = context_->device;
   VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  moduleInfo.codeSize = bytes;
-  moduleInfo.pCode = words;
+  moduleInfo.codeSize = code.bytes;
+  moduleInfo.pCode = code.words;
   VkShaderModule module;
   VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -205,9 +206,12 @@ VkPipeline VulkanBackend::createPipeline(const uint32_t* words, size_t bytes) {
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
-  // The scene's features as the constants of prelude_glsl.h, in constant_id order.
-  const std::array<VkBool32, 5> constants = {sceneFeatures_.alphaTested, sceneFeatures_.layered, sceneFeatures_.textured,
-                                             sceneFeatures_.transmissive, sceneFeatures_.microfacet};
+  // The constants in constant_id order: the features of prelude_glsl.h, then shade.comp's
+  // class and split (the other stages have no constants past the features, which Vulkan
+  // allows).
+  const std::array<VkBool32, 7> constants = {features.alphaTested,  features.layered,    features.textured,
+                                             features.transmissive, features.microfacet, shadeClass,
+                                             splitShade_};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
@@ -226,18 +230,29 @@ VkPipeline VulkanBackend::createPipeline(const uint32_t* words, size_t bytes) {
 void VulkanBackend::loadScene(const GpuScene& scene) {
   vkDeviceWaitIdle(context_->device);
   // Build the stages for the first scene; then swap in the other build of the stages that
-  // have two (still or with motion blur) and stages specialized to the scene's features when
-  // those change: a scene like the last costs nothing.
+  // have two (still or with motion blur) and stages specialized to the scene's features and
+  // shade classes when those change: a scene like the last costs nothing.
   const bool motion = scene.moving();
   const SceneFeatures features = scene.features();
-  const bool respecialize = !(features == sceneFeatures_);
+  const bool split = splitShadeByMaterial_ && scene.hasBothShadeClasses();
+  const bool respecialize = !(features == sceneFeatures_) || split != splitShade_;
   sceneFeatures_ = features;
+  splitShade_ = split;
   for (int k = 0; k < kKernelCount; ++k) {
     const SpirvCode code = spirvFor(Kernel(k), motion);
     if (pipelines_[k] == VK_NULL_HANDLE || respecialize || code.words != spirvFor(Kernel(k), motion_).words) {
       vkDestroyPipeline(context_->device, pipelines_[k], nullptr);
       pipelines_[k] = VK_NULL_HANDLE;  // so that a failure below leaves nothing to destroy twice
-      pipelines_[k] = createPipeline(code.words, code.bytes);
+      // Split, shade is first the diffuse class's, which needs nothing of the materials' code.
+      const bool diffuseShade = split && Kernel(k) == Kernel::Shade;
+      pipelines_[k] = createPipeline(code, diffuseShade ? features.withNeeds(0) : features, WP_SHADE_CLASS_DIFFUSE);
+    }
+  }
+  if (respecialize || motion != motion_ || (split && microfacetShadePipeline_ == VK_NULL_HANDLE)) {
+    vkDestroyPipeline(context_->device, microfacetShadePipeline_, nullptr);
+    microfacetShadePipeline_ = VK_NULL_HANDLE;
+    if (split) {
+      microfacetShadePipeline_ = createPipeline(spirvFor(Kernel::Shade, motion), features, WP_SHADE_CLASS_MICROFACET);
     }
   }
   motion_ = motion;
@@ -285,9 +300,11 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
     shadowRays_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::ShadowRay), kQueueUsage, false);
     pathRadiance_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(glm::vec4), storage, false);
     pathFeatures_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::PathFeatures), storage, false);
+    deferredHits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(uint32_t), storage, false);
     counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
   }
+
   pixelCount_ = params.pixelCount;
   accumulation_ = VulkanBuffer(*context_, accumulationBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   context_->runOnce([&](VkCommandBuffer cmd) {
@@ -306,6 +323,7 @@ void VulkanBackend::writeDescriptors() {
   buffers[gpu::Binding::pathRadiance] = &pathRadiance_;
   buffers[gpu::Binding::pathFeatures] = &pathFeatures_;
   buffers[gpu::Binding::counters] = &counters_;
+  buffers[gpu::Binding::deferredHits] = &deferredHits_;
   buffers[gpu::Binding::accumulation] = &accumulation_;
   buffers[gpu::Binding::bsdfTables] = &bsdfTables_;
   for (size_t i = 0; i < kSceneBindings.size(); ++i) {
@@ -389,18 +407,28 @@ void VulkanBackend::beginPass(const PassShape&) {
 }
 
 void VulkanBackend::dispatch(const StageDispatch& stage) {
+  const int k = static_cast<int>(stage.kernel);
+  record(pipelines_[k], stage.constants, stage.size);
+  if (stage.kernel == Kernel::Shade) {
+    // Split (shade.comp), the hits that the diffuse class deferred.
+    if (splitShade_) {
+      record(microfacetShadePipeline_, stage.constants,
+             {DispatchSize::Source::Queue, 0, WP_COUNTER_DEFERRED_SHADE_DISPATCH});
+    }
+  }
+  timestamp(k);
+}
+
+void VulkanBackend::record(VkPipeline pipeline, const gpu::PassConstants& constants, const DispatchSize& size) {
   if (recordedDispatch_) {
-    // Each stage reads what the previous ones wrote, including indirect dispatch sizes.
+    // Each dispatch reads what the previous ones wrote, including indirect dispatch sizes.
     barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
   }
   recordedDispatch_ = true;
-  int k = static_cast<int>(stage.kernel);
-  vkCmdBindPipeline(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[k]);
-  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(stage.constants),
-                     &stage.constants);
+  vkCmdBindPipeline(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
   // The barrier before every dispatch makes arguments written by an earlier stage visible.
-  const DispatchSize& size = stage.size;
   switch (size.source) {
     case DispatchSize::Source::Host:
       vkCmdDispatch(commandBuffer_, (size.threads + WP_WORKGROUP_SIZE - 1) / WP_WORKGROUP_SIZE, 1, 1);
@@ -409,7 +437,6 @@ void VulkanBackend::dispatch(const StageDispatch& stage) {
       vkCmdDispatchIndirect(commandBuffer_, counters_.handle(), size.argumentsWord * sizeof(uint32_t));
       break;
   }
-  timestamp(k);
 }
 
 PassResult VulkanBackend::endPass() {

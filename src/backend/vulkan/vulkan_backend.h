@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -12,6 +14,12 @@
 #include "render/backend.h"
 
 namespace wp {
+
+// A stage's SPIR-V, embedded at build time (shaders/CMakeLists.txt).
+struct SpirvCode {
+  const uint32_t* words;
+  size_t bytes;
+};
 
 class VulkanBackend final : public Backend {
 public:
@@ -30,14 +38,22 @@ public:
   PassResult endPass() override;
   Accumulation readAccumulation() override;
   void writeAccumulation(const Accumulation& accumulation) override;
+  // Whether the next loadScene of a scene with both shade classes (GpuScene::
+  // hasBothShadeClasses) builds a shade pipeline for each (shade.comp), as it does by
+  // default, or one for the whole scene: the images are the same, only the time differs
+  // (docs/performance.md).
+  void splitShadeByMaterial(bool split) { splitShadeByMaterial_ = split; }
 
 private:
   // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
   uint64_t pathStateBytes(uint64_t maxPaths) const;
   void createLayouts();
-  // A compute pipeline of the SPIR-V `words` (`bytes` long) with the shared layout,
-  // specialized to sceneFeatures_ (prelude_glsl.h).
-  VkPipeline createPipeline(const uint32_t* words, size_t bytes);
+  // A compute pipeline of the SPIR-V `code` with the shared layout, specialized to
+  // `features` (prelude_glsl.h) and, for shade, to shade class `shadeClass` (WP_SHADE_CLASS_*)
+  // of a split shade or not (splitShade_).
+  VkPipeline createPipeline(SpirvCode code, const SceneFeatures& features, uint32_t shadeClass);
+  // Records a dispatch of `pipeline`, after a barrier on what the dispatches before wrote.
+  void record(VkPipeline pipeline, const gpu::PassConstants& constants, const DispatchSize& size);
   void writeDescriptors();
   // A view of the whole buffer as texels of `format` (RGBA32UI or R32UI) (kept until the descriptors are rewritten).
   VkBufferView texelView(const VulkanBuffer& buffer, VkFormat format);
@@ -50,6 +66,11 @@ private:
   std::array<VkPipeline, kKernelCount> pipelines_{};  // none until the first loadScene
   bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
   SceneFeatures sceneFeatures_;  // and specialized to these
+  // Whether shade is split by shade class: pipelines_[Shade] then shades the diffuse class
+  // and microfacetShadePipeline_ the hits it deferred.
+  bool splitShade_ = false;
+  VkPipeline microfacetShadePipeline_ = VK_NULL_HANDLE;
+  bool splitShadeByMaterial_ = true;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet descriptorSet_ = VK_NULL_HANDLE;
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
@@ -65,6 +86,7 @@ private:
   VulkanBuffer shadowRays_;
   VulkanBuffer pathRadiance_;
   VulkanBuffer pathFeatures_;
+  VulkanBuffer deferredHits_;  // the deferred shade queue (queues.h)
   VulkanBuffer counters_;
   VulkanBuffer countersReadback_;
   VulkanBuffer accumulation_;
