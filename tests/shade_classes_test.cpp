@@ -19,24 +19,24 @@ GpuScene packedAsset(const char* name) { return packScene(loadScene(sourceDirect
 
 TEST(ShadeClasses, AreThoseOfTheMaterialsTheSurfacesUse) {
   // A Lambertian floor under glTF metals and glass: both classes.
-  EXPECT_TRUE(packedAsset("materials.gltf").hasBothShadeClasses());
+  EXPECT_TRUE(packedAsset("materials.gltf").features().hasBothShadeClasses());
   // Every surface of the project's box is ideal diffuse, its lamp too: one class.
   GpuScene box = packedAsset("cornell-box.gltf");
-  ASSERT_FALSE(box.hasBothShadeClasses());
+  ASSERT_FALSE(box.features().hasBothShadeClasses());
   // A glTF material no surface uses costs no pipeline...
   gpu::GpuMaterial gltf = box.materials[0];
   gltf.info.x = WP_MATERIAL_GLTF;
   box.materials.push_back(gltf);
-  EXPECT_FALSE(box.hasBothShadeClasses());
+  EXPECT_FALSE(box.features().hasBothShadeClasses());
   // ...until a triangle has it.
   box.triangles[0].info.x = uint32_t(box.materials.size() - 1);
-  EXPECT_TRUE(box.hasBothShadeClasses());
+  EXPECT_TRUE(box.features().hasBothShadeClasses());
   // Unlit materials need none of the BRDF either.
   box.materials.back().info.x = WP_MATERIAL_UNLIT;
-  EXPECT_FALSE(box.hasBothShadeClasses());
+  EXPECT_FALSE(box.features().hasBothShadeClasses());
   // Every material glTF's: one class again.
   for (gpu::GpuMaterial& m : box.materials) m.info.x = WP_MATERIAL_GLTF;
-  EXPECT_FALSE(box.hasBothShadeClasses());
+  EXPECT_FALSE(box.features().hasBothShadeClasses());
 }
 
 // The accumulation of `asset` (small, a few samples, every bounce) rendered on Vulkan under

@@ -497,9 +497,22 @@ SceneFeatures GpuScene::features() const {
   f.alphaTested = std::any_of(triangles.begin(), triangles.end(),
                               [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
   f.textured = !textures.empty();
+  // Only the materials some surface has: a material nothing uses would only cost code.
+  std::vector<bool> used(materials.size(), false);
+  auto use = [&](uint32_t material) {
+    if (material < used.size()) used[material] = true;
+  };
+  for (const gpu::GpuTriangle& t : triangles) use(gpu::triangleMaterial(t));
+  for (uint32_t i = 0; i < placedInstances; ++i) {
+    if (gpu::instanceKind(instances[i]) == WP_INSTANCE_SPHERE) use(gpu::instanceSphereMaterial(instances[i]));
+  }
+  for (const gpu::GpuPlane& p : planes) use(gpu::planeMaterial(p));
   uint32_t needs = 0;
-  for (const gpu::GpuMaterial& m : materials) {
-    needs |= gpu::materialShadeNeeds(m);
+  for (size_t m = 0; m < materials.size(); ++m) {
+    if (!used[m]) continue;
+    const uint32_t materialNeeds = gpu::materialShadeNeeds(materials[m]);
+    needs |= materialNeeds;
+    f.diffuse = f.diffuse || materialNeeds == 0;
   }
   return f.withNeeds(needs);
 }
@@ -510,26 +523,6 @@ SceneFeatures SceneFeatures::withNeeds(uint32_t needs) const {
   f.layered = (needs & WP_NEEDS_LAYERS) != 0;
   f.transmissive = (needs & WP_NEEDS_TRANSMISSION) != 0;
   return f;
-}
-
-bool GpuScene::hasBothShadeClasses() const {
-  // The materials some surface has: one that nothing uses would only cost a pipeline.
-  std::vector<bool> used(materials.size(), false);
-  auto use = [&](uint32_t material) {
-    if (material < used.size()) used[material] = true;
-  };
-  for (const gpu::GpuTriangle& t : triangles) use(gpu::triangleMaterial(t));
-  for (uint32_t i = 0; i < placedInstances; ++i) {
-    if (gpu::instanceKind(instances[i]) == WP_INSTANCE_SPHERE) use(gpu::instanceSphereMaterial(instances[i]));
-  }
-  for (const gpu::GpuPlane& p : planes) use(gpu::planeMaterial(p));
-  bool diffuse = false;
-  bool microfacet = false;
-  for (size_t m = 0; m < materials.size(); ++m) {
-    if (!used[m]) continue;
-    (gpu::materialShadeNeeds(materials[m]) == 0 ? diffuse : microfacet) = true;
-  }
-  return diffuse && microfacet;
 }
 
 GpuScene packScene(const Scene& scene) {

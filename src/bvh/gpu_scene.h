@@ -22,13 +22,18 @@ struct GpuMeshRange {
 
 // What a scene uses of the stages' code. Vulkan compiles each feature's code only into the
 // stages of scenes that have it (specialization constants, prelude_glsl.h), since lavapipe
-// pays for code that never runs (docs/performance.md); C++ and OpenCL keep all of it.
+// pays for code that never runs (docs/performance.md); C++ and OpenCL keep all of it. The
+// material features count the materials some surface (triangle, sphere, plane) has.
 struct SceneFeatures {
   bool alphaTested = false;   // a triangle's material is MASK or BLEND (traverse.h)
   bool layered = false;       // a material has a clear coat or a sheen (material.h)
   bool textured = false;      // a material has a texture (texture.h)
   bool transmissive = false;  // a material has transmission: glass (material.h)
   bool microfacet = false;    // a material is glTF's BRDF, not ideal diffuse or unlit (bsdf.h)
+  bool diffuse = false;       // a material is ideal diffuse or unlit (materialShadeNeeds 0)
+  // Both shade classes (layout.h): materials that need glTF's BRDF and materials that need
+  // none of it. Vulkan then shades each class with a pipeline of its own (shade.comp).
+  bool hasBothShadeClasses() const { return diffuse && microfacet; }
   // These features with the material ones (layers, transmission, microfacet) as `needs`
   // says (WP_NEEDS_* bits, materialShadeNeeds).
   SceneFeatures withNeeds(uint32_t needs) const;
@@ -55,10 +60,6 @@ struct GpuScene {
   // What the scene uses, read from its records (so any GpuScene, packed or built by hand,
   // gets the stages its data needs).
   SceneFeatures features() const;
-  // Whether the scene's surfaces have both shade classes (layout.h): materials that need
-  // glTF's BRDF and materials that need none of it (materialShadeNeeds 0). Vulkan then shades
-  // each class with a pipeline of its own (shade.comp).
-  bool hasBothShadeClasses() const;
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
   // The light table: world-space emissive triangles (for each still mesh instance in

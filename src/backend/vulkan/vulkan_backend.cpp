@@ -234,7 +234,7 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   // shade classes when those change: a scene like the last costs nothing.
   const bool motion = scene.moving();
   const SceneFeatures features = scene.features();
-  const bool split = splitShadeByMaterial_ && scene.hasBothShadeClasses();
+  const bool split = splitShadeByMaterial_ && features.hasBothShadeClasses();
   const bool respecialize = !(features == sceneFeatures_) || split != splitShade_;
   sceneFeatures_ = features;
   splitShade_ = split;
@@ -409,12 +409,10 @@ void VulkanBackend::beginPass(const PassShape&) {
 void VulkanBackend::dispatch(const StageDispatch& stage) {
   const int k = static_cast<int>(stage.kernel);
   record(pipelines_[k], stage.constants, stage.size);
-  if (stage.kernel == Kernel::Shade) {
-    // Split (shade.comp), the hits that the diffuse class deferred.
-    if (splitShade_) {
-      record(microfacetShadePipeline_, stage.constants,
-             {DispatchSize::Source::Queue, 0, WP_COUNTER_DEFERRED_SHADE_DISPATCH});
-    }
+  if (stage.kernel == Kernel::Shade && splitShade_) {
+    // Then the hits that the diffuse class deferred (shade.comp).
+    record(microfacetShadePipeline_, stage.constants,
+           {DispatchSize::Source::Queue, 0, WP_COUNTER_DEFERRED_SHADE_DISPATCH});
   }
   timestamp(k);
 }

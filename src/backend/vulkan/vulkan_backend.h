@@ -38,7 +38,7 @@ public:
   PassResult endPass() override;
   Accumulation readAccumulation() override;
   void writeAccumulation(const Accumulation& accumulation) override;
-  // Whether the next loadScene of a scene with both shade classes (GpuScene::
+  // Whether the next loadScene of a scene with both shade classes (SceneFeatures::
   // hasBothShadeClasses) builds a shade pipeline for each (shade.comp), as it does by
   // default, or one for the whole scene: the images are the same, only the time differs
   // (docs/performance.md).
