@@ -284,13 +284,15 @@ WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, floa
 // Nearest hit at 0 < t < tMax, or with anyHit the first one found, with moving instances
 // placed at normalized shutter time `time` (motion.h): the planes, then the top level.
 //
-// Each level is one flat loop over stack entries. An iteration either tests a node's four
-// children (the nearest reached becomes the next entry, the others are pushed) or intersects one leaf
-// (for the top level an instance, intersectInstance; for a bottom level a few triangles,
-// intersectLeaf). Flat loops matter on SIMD implementations that run divergent branches
-// under masks (lavapipe, and GPUs): nested loops per child and per leaf made every lane pay
-// for the deepest nesting any lane reached, and a node visit cost as much as ten triangle
-// tests.
+// The top level is walked like a bottom level (traceBottomLevel): each lane visits nodes
+// until it holds an instance or has none left, and the instances are entered only once every
+// lane of the subgroup holds one, so the lanes run their bottom levels together. In a loop
+// whose every iteration was a node visit or an instance, the lanes that reached an instance
+// ran their bottom-level traversals while the others waited at a node, one after another:
+// lavapipe's extend on the instanced scene 21% and connect 27% faster without it (images
+// bit-identical; where work-items are threads nothing waits, and PoCL's times are unchanged).
+// Within a level a node visit and a leaf stay in one loop, not nested loops per child and
+// per leaf, which made every lane pay for the deepest nesting any lane reached.
 WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
                      float tMax, float time, bool anyHit) {
   Hit hit;
@@ -306,21 +308,30 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
   vec3 invDir = rayInverseDirection(direction);
   uint stack[WP_LEVEL_STACK_SIZE];
   uint sp = 0u;
-  uint entry = packEntry(tlasRoot, 0u);
+  uint entry = packEntry(tlasRoot, 0u);  // WP_INVALID once the stack is empty
   for (;;) {
-    if (entryCount(entry) == 0u) {
+    while (entryCount(entry) == 0u) {
       ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
       WP_PUSH_FAR_CHILDREN(stack, sp, c)
       if (c.count > 0u) {
         entry = c.nearestFirst.x;
-        continue;
+      } else if (sp > 0u) {
+        --sp;
+        entry = stack[sp];
+      } else {
+        entry = WP_INVALID;
       }
-    } else {
-      // A top-level leaf holds one instance (GpuScene packs one per leaf).
-      hit = intersectInstance(WP_BUFFERS_ARG entryIndex(entry), origin, direction, time, hit, anyHit);
-      if (anyHit && hit.instance != WP_INVALID) {
-        return hit;
+      if (WP_SUBGROUP_ALL(entryCount(entry) != 0u)) {
+        break;
       }
+    }
+    if (entry == WP_INVALID) {
+      break;
+    }
+    // A top-level leaf holds one instance (GpuScene packs one per leaf).
+    hit = intersectInstance(WP_BUFFERS_ARG entryIndex(entry), origin, direction, time, hit, anyHit);
+    if (anyHit && hit.instance != WP_INVALID) {
+      return hit;
     }
     if (sp == 0u) {
       break;
