@@ -291,8 +291,8 @@ WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, floa
 // ran their bottom-level traversals while the others waited at a node, one after another:
 // lavapipe's extend on the instanced scene 21% and connect 27% faster without it (images
 // bit-identical; where work-items are threads nothing waits, and PoCL's times are unchanged).
-// Within a level a node visit and a leaf stay in one loop, not nested loops per child and
-// per leaf, which made every lane pay for the deepest nesting any lane reached.
+// Neither level nests a loop per child or per leaf, which made every lane pay for the deepest
+// nesting any lane reached.
 WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec3 direction,
                      float tMax, float time, bool anyHit) {
   Hit hit;
@@ -308,7 +308,8 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
   vec3 invDir = rayInverseDirection(direction);
   uint stack[WP_LEVEL_STACK_SIZE];
   uint sp = 0u;
-  uint entry = packEntry(tlasRoot, 0u);  // WP_INVALID once the stack is empty
+  // WP_INVALID once the stack is empty: its count bits are not 0, so it ends the node loop.
+  uint entry = packEntry(tlasRoot, 0u);
   for (;;) {
     while (entryCount(entry) == 0u) {
       ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
