@@ -334,6 +334,8 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
     if (anyHit && hit.instance != WP_INVALID) {
       return hit;
     }
+    // Ends here when the stack is empty, rather than setting WP_INVALID for the test above as
+    // the node loop's pop does: going round once more made lavapipe's extend 8% slower.
     if (sp == 0u) {
       break;
     }
