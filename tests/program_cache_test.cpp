@@ -211,7 +211,7 @@ TEST(ProgramCacheRun, PoclWorkGroupMethodIsAutoUnlessChosenAndKeysTheCache) {
   expectOnlyTheCompileNote(renderWithCache(dir, {"POCL_KERNEL_CACHE=0"}).run);
   ASSERT_EQ(entries(dir).size(), 1u);
   EXPECT_NE(storedKey(entries(dir)[0]).find("pocl work-group method: auto\n"), std::string::npos);
-  CachedRun chosen = renderWithCache(dir, {"POCL_WORK_GROUP_METHOD=repl"});
+  CachedRun chosen = renderWithCache(dir, {"POCL_WORK_GROUP_METHOD=loopvec"});
   expectOnlyTheCompileNote(chosen.run);
   ASSERT_EQ(entries(dir).size(), 2u);
   CachedRun again = renderWithCache(dir);

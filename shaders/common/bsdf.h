@@ -42,7 +42,7 @@ WP_FN BsdfEval evalLambert(vec3 albedo, vec3 wo, vec3 wi) {
   return e;
 }
 
-WP_FN MaterialSample sampleLambert(vec3 albedo, vec3 wo, vec2 u) {
+WP_FN_INLINED MaterialSample sampleLambert(vec3 albedo, vec3 wo, vec2 u) {
   float side = sideOf(wo);
   vec3 wi = sampleCosineHemisphere(u);
   if (wo.z * side < WP_BSDF_MIN_COS || wi.z < WP_BSDF_MIN_COS) {
@@ -69,7 +69,7 @@ WP_FN bool bsdfIsPerfectlySpecular(GpuMaterial m) {
 }
 
 // u in [0, 1)^3; see sampleMaterial for delta samples.
-WP_FN MaterialSample sampleBsdf(GpuMaterial m, vec3 wo, vec3 u, uint flags) {
+WP_FN_INLINED MaterialSample sampleBsdf(GpuMaterial m, vec3 wo, vec3 u, uint flags) {
   if (materialKind(m) == WP_MATERIAL_UNLIT) {
     return noSample();
   }

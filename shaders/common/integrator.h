@@ -86,7 +86,7 @@ WP_FN vec4 textureOrOne(WP_BUFFERS uint index, TexCoords c) {
 }
 
 // The layered extensions' factors times their textures (layout.h says which channel).
-WP_FN GpuMaterial texturedLayers(WP_BUFFERS GpuMaterial m, TexCoords c) {
+WP_FN_INLINED GpuMaterial texturedLayers(WP_BUFFERS GpuMaterial m, TexCoords c) {
   vec4 specularColor = textureOrOne(WP_BUFFERS_ARG materialSpecularColorTexture(m), c);
   float specular = textureOrOne(WP_BUFFERS_ARG materialSpecularTexture(m), c).w;
   m.specular = m.specular * make_vec4(specularColor.x, specularColor.y, specularColor.z, specular);
@@ -107,7 +107,7 @@ WP_FN GpuMaterial texturedLayers(WP_BUFFERS GpuMaterial m, TexCoords c) {
 // textures' channels, as layout.h lists them), each texture on its own coordinate set and
 // transform. Where the surface lacks a texture's set (spheres and planes have none) its
 // factor stands alone. An unlit material's emission is its base colour.
-WP_FN GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
+WP_FN_INLINED GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
   TexCoords c = s.texCoords;
   vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, c);
@@ -368,7 +368,7 @@ WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuM
 // weight), then, below the bounce limit, sampleDirectLight (next event estimation) and
 // sampleContinuation (BSDF sampling and Russian roulette), each with its own numbers from
 // the path's sampler (the vertex's dimensions of sampler.h), drawn in that order.
-WP_FN ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
+WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
                            uint primitive) {
   ShadeResult r;
   r.flags = 0u;

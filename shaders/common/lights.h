@@ -154,7 +154,7 @@ WP_FN float lightPdf(GpuLight light, float selection, float distanceSquared, flo
 
 // A point uniform on the area of `light`, seen from `position` (selection not included),
 // with the emission there: the emissive texture at the point's interpolated TEXCOORD_0.
-WP_FN LightSample sampleLightTriangle(WP_BUFFERS GpuLight light, vec3 position, vec2 u) {
+WP_FN_INLINED LightSample sampleLightTriangle(WP_BUFFERS GpuLight light, vec3 position, vec2 u) {
   vec2 b = sampleUniformTriangle(u);
   vec3 e1 = triangleLightEdge1(light);
   vec3 e2 = triangleLightEdge2(light);
@@ -294,7 +294,7 @@ WP_FN LightChoice selectLightBySolidAngle(WP_BUFFERS uint lightCount, vec3 posit
 // Chooses a light (by power through the alias table, or by solid angle) and a point on it,
 // as seen from `position` at shutter time `time`: u.x selects, (u.y, u.z) place the point on
 // a triangle.
-WP_FN LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection, vec3 position,
+WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection, vec3 position,
                               float time, vec3 u) {
   LightChoice choice;
   if (selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {

@@ -30,9 +30,13 @@ typedef uint4 uvec4;
 #define WP_BEGIN
 #define WP_END
 #define WP_FN
-// A step split out of a hot function only to be read on its own (shadeHit's): PoCL's
-// inliner would otherwise keep it a call and copy its struct arguments (9% more
-// instructions in shade), so it is inlined as if still written in place.
+// A function on a stage's hot path (the stage bodies, shade's steps, the sampler's draws,
+// the traversal below the top level): PoCL's inliner keeps such functions calls, copying
+// their struct arguments and results through the stack (shadeHit had a 1.5 KB frame), so
+// they are inlined as if written in place. PoCL on the Lambertian Cornell box: shade 15%,
+// generate 20% and extend 4% faster, images bit-identical; the first compile of the kernels
+// 3.6 -> 6.1 s. Inlining every function as well (the BSDF models, textures, the top level)
+// took 27 s to compile for a few percent more.
 #define WP_FN_INLINED __attribute__((always_inline))
 // What the scene has (prelude_glsl.h): only Vulkan specializes the stages for it.
 #define WP_SCENE_ALPHA_TESTED true

@@ -56,7 +56,7 @@ WP_STRUCT(PathDraw1)
   float u;
 WP_STRUCT_END(PathDraw1)
 
-WP_FN PathDraw1 drawPath1(uint samplerKind, PathSamples p, uint dimension) {
+WP_FN_INLINED PathDraw1 drawPath1(uint samplerKind, PathSamples p, uint dimension) {
   PathDraw1 d;
   d.samples = p;
   if (samplerKind == WP_SAMPLER_SOBOL) {
@@ -74,7 +74,7 @@ WP_STRUCT(PathDraw2)
   vec2 u;
 WP_STRUCT_END(PathDraw2)
 
-WP_FN PathDraw2 drawPath2(uint samplerKind, PathSamples p, uint dimension) {
+WP_FN_INLINED PathDraw2 drawPath2(uint samplerKind, PathSamples p, uint dimension) {
   PathDraw2 d;
   d.samples = p;
   if (samplerKind == WP_SAMPLER_SOBOL) {
@@ -95,7 +95,7 @@ WP_STRUCT(PathDraw3)
   vec3 u;
 WP_STRUCT_END(PathDraw3)
 
-WP_FN PathDraw3 drawPath3(uint samplerKind, PathSamples p, uint dimension) {
+WP_FN_INLINED PathDraw3 drawPath3(uint samplerKind, PathSamples p, uint dimension) {
   PathDraw1 choice = drawPath1(samplerKind, p, dimension);
   PathDraw2 point = drawPath2(samplerKind, choice.samples, dimension + 1u);
   PathDraw3 d;
@@ -107,7 +107,7 @@ WP_FN PathDraw3 drawPath3(uint samplerKind, PathSamples p, uint dimension) {
 // The path's normalized shutter time in [0, 1). The independent sampler hashes it apart
 // from the stream rather than drawing it, so that no other draw shifts and scenes without
 // motion render bit for bit as they did before time existed.
-WP_FN float pathTime(uint samplerKind, PathSamples p) {
+WP_FN_INLINED float pathTime(uint samplerKind, PathSamples p) {
   if (samplerKind == WP_SAMPLER_SOBOL) {
     return sobolScrambled1(p.sampleIndex, sobolDimensionSeed(p.state, WP_DIM_TIME));
   }

@@ -29,7 +29,7 @@ WP_FN uint imagePixel(RenderParams params, uint regionPixel) {
 // aperture, at a shutter time in [0, 1), all uniform, drawn by the render's sampler from
 // (image pixel, sample, seed): a pixel's paths are the same whichever region or batch of
 // samples traces them.
-WP_FN PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
+WP_FN_INLINED PathRay cameraPathRay(RenderParams params, PassConstants pc, uint slot) {
   uint pixels = params.pixelCount;
   uint linear = pc.firstPixel + slot;
   uint pixel = imagePixel(params, linear % pixels);
@@ -55,7 +55,7 @@ WP_FN HitRecord extendRay(WP_BUFFERS RenderParams params, PathRay ray) {
 }
 
 // The vertex `ray` reached (or the sky it left to), from its hit record.
-WP_FN ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, HitRecord hit) {
+WP_FN_INLINED ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray, HitRecord hit) {
   if (hitIsMiss(hit)) {
     return shadeMiss(WP_BUFFERS_ARG params, ray);
   }
@@ -85,7 +85,7 @@ WP_FN bool slotPixelStopped(WP_BUFFERS RenderParams params, PassConstants pc, ui
 // adaptive sampling the rays of pixels that stopped are left out and the others appended,
 // so the queue holds only paths to trace (entry order does not matter: a path's results go
 // to its slot).
-WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
+WP_FN_INLINED void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint slot) {
   uint pathCount = pc.pathCount;
   uint maxPaths = params.maxPaths;
   bool adaptive = params.adaptiveThreshold > 0.0f;
@@ -106,7 +106,7 @@ WP_FN void generateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint 
 }
 
 // Extend, work item `i`: the closest hit of entry i of the bounce's ray queue, into hits[i].
-WP_FN void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+WP_FN_INLINED void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
   WorkQueue queue = rayQueue(pc.bounce, params.maxPaths);
   if (i >= queueSize(WP_BUFFERS_ARG queue)) {
     return;
@@ -117,7 +117,7 @@ WP_FN void extendStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i)
 // Shade, work item `i` (below the size of the bounce's ray queue): the vertex that entry i
 // reached, its radiance added to the path. The kernel appends the continuation and the
 // shadow ray the result holds to continuationQueue and shadowQueue.
-WP_FN ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+WP_FN_INLINED ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
   PathRay ray = WP_LOAD(rays, queueEntry(rayQueue(pc.bounce, params.maxPaths), i));
   ShadeResult r = shadePath(WP_BUFFERS_ARG params, ray, WP_LOAD(hits, i));
   if (r.radiance.x != 0.0f || r.radiance.y != 0.0f || r.radiance.z != 0.0f) {
@@ -144,7 +144,7 @@ WP_FN WorkQueue continuationQueue(RenderParams params, PassConstants pc) {
 // Advance, one work item: the queue sizes of `pc`'s bounce turned into the next stages'
 // dispatch arguments (advanceQueues), so the pass needs no readback; or, after generate
 // (WP_AFTER_GENERATE), bounce 0 sized to the camera rays generate appended.
-WP_FN void advanceStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+WP_FN_INLINED void advanceStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
   // The dispatch is one workgroup; a single work item must do the read-modify-writes.
   if (i == 0u) {
     if (pc.bounce == WP_AFTER_GENERATE) {
@@ -157,7 +157,7 @@ WP_FN void advanceStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
 
 // Connect, work item `i`: the shadow ray at entry i of the bounce's shadow queue adds its
 // light sample to its path unless something blocks it.
-WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
+WP_FN_INLINED void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
   WorkQueue queue = shadowQueue(pc.bounce);
   if (i >= queueSize(WP_BUFFERS_ARG queue)) {
     return;
@@ -175,7 +175,7 @@ WP_FN void connectStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i
 // the pixel when stopsSampling says so, and adds none of the pixel's later samples (those
 // this pass traced anyway are dropped), so a pixel's samples do not depend on the passes.
 // Its first work item also empties the queues for the next pass.
-WP_FN void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
+WP_FN_INLINED void accumulateStage(WP_BUFFERS RenderParams params, PassConstants pc, uint t) {
   uint pixels = params.pixelCount;
   uint pathCount = pc.pathCount;
   if (t == 0u) {

@@ -107,7 +107,7 @@ WP_FN uint hitMaterial(WP_BUFFERS uint instanceField, uint primitive) {
 
 // `instanceField` and `primitive` are hitInstanceField and hitPrimitive of a hit at the
 // normalized shutter time `time` the ray was traced at (moving instances are placed then).
-WP_FN SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
+WP_FN_INLINED SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive, vec3 position, float time) {
   SurfaceHit s;
   s.position = position;
   s.light = WP_INVALID;

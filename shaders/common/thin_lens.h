@@ -117,7 +117,7 @@ WP_FN vec2 sampleRegularPolygon(vec2 u, uint sides, float rotation) {
 // A point uniform over the lens's aperture, in scene units along (right, up) from its centre;
 // the centre for a pinhole (radius 0), without the disk's sine and cosine (the same branch
 // for every ray of a camera; PoCL's generate spent a fifth of its time on them).
-WP_FN vec2 sampleAperture(ThinLens lens, vec2 u) {
+WP_FN_INLINED vec2 sampleAperture(ThinLens lens, vec2 u) {
   if (lens.aperture.x == 0.0f) {
     return make_vec2(0.0f, 0.0f);
   }
@@ -163,7 +163,7 @@ WP_FN float cameraDepth(ThinLens lens, vec3 direction, float t) {
 }
 
 // thinLensRay from a uniformly sampled point of the aperture.
-WP_FN CameraRay sampleThinLensRay(ThinLens lens, vec2 film, uint width, uint height, vec2 u) {
+WP_FN_INLINED CameraRay sampleThinLensRay(ThinLens lens, vec2 film, uint width, uint height, vec2 u) {
   return thinLensRay(lens, film, width, height, sampleAperture(lens, u));
 }
 

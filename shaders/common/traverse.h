@@ -201,7 +201,7 @@ WP_FN_INLINED Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec
 // holds a leaf, and the leaf is postponed until every lane of the subgroup holds one, so
 // node visits and leaf tests run in separate SIMD iterations (Aila & Laine 2009,
 // "while-while" with postponed leaves).
-WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, Hit hit, bool anyHit) {
+WP_FN_INLINED Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, Hit hit, bool anyHit) {
   vec3 invDir = rayInverseDirection(d);
   uint stack[WP_LEVEL_STACK_SIZE];
   uint sp = 0u;
@@ -265,7 +265,7 @@ WP_FN Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, 
 
 // Instance `i`, placed at normalized shutter time `time`: its unit sphere, or its mesh's
 // bottom level, with the ray taken to object space.
-WP_FN Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, float time, Hit hit, bool anyHit) {
+WP_FN_INLINED Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 direction, float time, Hit hit, bool anyHit) {
   GpuInstance inst = instanceAt(WP_BUFFERS_ARG i, time);
   vec3 o = pointToObject(inst, origin);
   vec3 d = directionToObject(inst, direction);
