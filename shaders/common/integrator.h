@@ -369,7 +369,7 @@ WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuM
 // sampleContinuation (BSDF sampling and Russian roulette), each with its own numbers from
 // the path's sampler (the vertex's dimensions of sampler.h), drawn in that order.
 WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, float t, uint instanceField,
-                           uint primitive) {
+                                   uint primitive) {
   ShadeResult r;
   r.flags = 0u;
   vec3 direction = rayDirection(ray);

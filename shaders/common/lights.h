@@ -295,7 +295,7 @@ WP_FN LightChoice selectLightBySolidAngle(WP_BUFFERS uint lightCount, vec3 posit
 // as seen from `position` at shutter time `time`: u.x selects, (u.y, u.z) place the point on
 // a triangle.
 WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection, vec3 position,
-                              float time, vec3 u) {
+                                      float time, vec3 u) {
   LightChoice choice;
   if (selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {
     choice = selectLightBySolidAngle(WP_BUFFERS_ARG lightCount, position, time, u.x);
