@@ -91,9 +91,9 @@ WP_FN vec4 colorAt(GpuTriangleShading shading, vec2 b) {
          unpackUnorm8(vertexColor2(shading)) * b.y;
 }
 
-// The material of the surface a hit reached (hitInstanceField, hitPrimitive), as surfaceAt
-// finds it, without reconstructing the surface: what Vulkan's first shade pipeline sorts
-// the hits into shade classes by (shade.comp). An instance's kind and material do not move.
+// The material of the surface a hit reached (hitInstanceField, hitPrimitive), without
+// reconstructing the surface: surfaceAt's, and what Vulkan's first shade pipeline sorts the
+// hits into shade classes by (shade.comp). An instance's kind and material do not move.
 WP_FN uint hitMaterial(WP_BUFFERS uint instanceField, uint primitive) {
   if ((instanceField & WP_HIT_PLANE) != 0u) {
     return planeMaterial(WP_LOAD(planes, instanceField & ~WP_HIT_PLANE));
@@ -115,18 +115,17 @@ WP_FN_INLINED SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive
   s.color = make_vec4(1.0f, 1.0f, 1.0f, 1.0f);
   s.tangent = make_vec3(1.0f, 0.0f, 0.0f);
   s.bitangent = make_vec3(0.0f, 1.0f, 0.0f);
+  s.material = hitMaterial(WP_BUFFERS_ARG instanceField, primitive);
   if ((instanceField & WP_HIT_PLANE) != 0u) {
     GpuPlane plane = WP_LOAD(planes, instanceField & ~WP_HIT_PLANE);
     s.normal = planeNormal(plane);
     s.shadingNormal = s.normal;
-    s.material = planeMaterial(plane);
     return s;
   }
   GpuInstance inst = instanceAt(WP_BUFFERS_ARG instanceField, time);
   if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
     s.normal = normalToWorld(inst, pointToObject(inst, position));
     s.shadingNormal = s.normal;
-    s.material = instanceSphereMaterial(inst);
     return s;
   }
   GpuTriangle tri = WP_LOAD(triangles, primitive);
@@ -169,7 +168,6 @@ WP_FN_INLINED SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive
     vec3 world = normalToWorld(inst, n);
     s.shadingNormal = dot(world, s.normal) >= 0.0f ? world : -world;
   }
-  s.material = triangleMaterial(tri);
   uint emitter = triangleEmitter(tri);
   uint firstLight = instanceFirstLight(inst);
   s.light = emitter == WP_INVALID || firstLight == WP_INVALID ? WP_INVALID : firstLight + emitter;

@@ -304,7 +304,6 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
     counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
   }
-
   pixelCount_ = params.pixelCount;
   accumulation_ = VulkanBuffer(*context_, accumulationBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   context_->runOnce([&](VkCommandBuffer cmd) {
