@@ -24,7 +24,7 @@ constexpr uint32_t kScanlinesPerZipBlock = 16;
 constexpr unsigned char kZipCompression = 3;  // OpenEXR's ZIP_COMPRESSION
 constexpr int32_t kFloatPixels = 2;            // OpenEXR's FLOAT pixel type
 // libdeflate's default level, whose files are the size of zlib's default (which tinyexr and
-// OpenEXR 2 use) in 0.7 of its time (docs/performance.md). zlib's levels 4 and 1 had written
+// OpenEXR 2 use) in about half its time (docs/performance.md). zlib's levels 4 and 1 had written
 // the instanced scene's EXR (960x540 with its passes) 0.4% and 1.2% larger for 2% and 15% less
 // time.
 constexpr int kDeflateLevel = 6;
