@@ -7,15 +7,13 @@
 #include <libdeflate.h>
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cstring>
-#include <exception>
 #include <initializer_list>
 #include <new>
-#include <stdexcept>
 #include <string>
-#include <thread>
+
+#include "core/parallel.h"
 
 namespace wp {
 namespace {
@@ -86,8 +84,7 @@ struct Compressor {
 
 // The chunk of the block of scanlines [y0, y1): its first scanline, its size and its data,
 // deflated unless that would not make it smaller (a reader tells the two apart by size).
-std::vector<unsigned char> zipBlock(Compressor& compressor, uint32_t width, uint32_t y0, uint32_t y1,
-                                    const std::vector<ExrChannel>& channels) {
+std::vector<unsigned char> zipBlock(uint32_t width, uint32_t y0, uint32_t y1, const std::vector<ExrChannel>& channels) {
   std::vector<float> values;
   values.reserve(size_t(y1 - y0) * width * channels.size());
   for (uint32_t y = y0; y < y1; ++y) {
@@ -112,6 +109,7 @@ std::vector<unsigned char> zipBlock(Compressor& compressor, uint32_t width, uint
   // block, where libdeflate returns 0 for a block that does not fit, which is then stored.
   constexpr size_t kChunkHeader = 2 * sizeof(int32_t);
   std::vector<unsigned char> chunk(kChunkHeader + rawSize);
+  Compressor compressor;
   size_t dataSize = libdeflate_zlib_compress(compressor.state, coded.data(), rawSize, chunk.data() + kChunkHeader,
                                              rawSize - 1);
   if (dataSize == 0) {
@@ -124,31 +122,15 @@ std::vector<unsigned char> zipBlock(Compressor& compressor, uint32_t width, uint
   return chunk;
 }
 
-// Every block's chunk, compressed by as many threads as the machine has cores.
+// Every block's chunk, compressed on every core.
 std::vector<std::vector<unsigned char>> zipBlocks(uint32_t width, uint32_t height,
                                                   const std::vector<ExrChannel>& channels) {
   const uint32_t count = (height + kScanlinesPerZipBlock - 1) / kScanlinesPerZipBlock;
   std::vector<std::vector<unsigned char>> chunks(count);
-  std::atomic<uint32_t> next{0};
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  auto work = [&] {
-    try {
-      Compressor compressor;
-      for (uint32_t b = next++; b < count && !failed; b = next++) {
-        const uint32_t y0 = b * kScanlinesPerZipBlock;
-        chunks[b] = zipBlock(compressor, width, y0, std::min(height, y0 + kScanlinesPerZipBlock), channels);
-      }
-    } catch (...) {
-      if (!failed.exchange(true)) failure = std::current_exception();
-    }
-  };
-  const uint32_t threads = std::clamp(std::thread::hardware_concurrency(), 1u, count);
-  std::vector<std::thread> helpers;
-  for (uint32_t t = 1; t < threads; ++t) helpers.emplace_back(work);
-  work();
-  for (std::thread& h : helpers) h.join();
-  if (failure) std::rethrow_exception(failure);
+  forEachInParallel(count, [&](uint32_t b) {
+    const uint32_t y0 = b * kScanlinesPerZipBlock;
+    chunks[b] = zipBlock(width, y0, std::min(height, y0 + kScanlinesPerZipBlock), channels);
+  });
   return chunks;
 }
 
