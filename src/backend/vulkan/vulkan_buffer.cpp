@@ -33,6 +33,7 @@ VulkanBuffer::VulkanBuffer(VulkanContext& context, VkDeviceSize size, VkBufferUs
     VK_CHECK(result);
   }
   VK_CHECK(vkBindBufferMemory(context.device, buffer_, memory_, 0));
+  memoryFlags_ = context.memoryProperties.memoryTypes[alloc.memoryTypeIndex].propertyFlags;
   if (hostVisible) {
     VK_CHECK(vkMapMemory(context.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
   }
@@ -50,6 +51,7 @@ VulkanBuffer& VulkanBuffer::operator=(VulkanBuffer&& other) noexcept {
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     size_ = std::exchange(other.size_, 0);
     mapped_ = std::exchange(other.mapped_, nullptr);
+    memoryFlags_ = std::exchange(other.memoryFlags_, 0);
   }
   return *this;
 }
@@ -67,10 +69,26 @@ void VulkanBuffer::release() {
   buffer_ = VK_NULL_HANDLE;
   memory_ = VK_NULL_HANDLE;
   mapped_ = nullptr;
+  memoryFlags_ = 0;
+}
+
+bool VulkanBuffer::hasMemory(VkMemoryPropertyFlags flags) const { return (memoryFlags_ & flags) == flags; }
+
+void* VulkanBuffer::mapInPlace() {
+  if (mapped_ == nullptr) {
+    VK_CHECK(vkMapMemory(context_->device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  }
+  return mapped_;
 }
 
 void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {
   if (bytes == 0) {
+    return;
+  }
+  if (hasMemory(VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) {
+    // Written in place once the queue is idle; the next submission sees the writes.
+    VK_CHECK(vkQueueWaitIdle(context_->queue));
+    std::memcpy(mapInPlace(), data, bytes);
     return;
   }
   VulkanBuffer staging(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
@@ -90,16 +108,24 @@ void VulkanBuffer::download(void* data, VkDeviceSize bytes, VulkanBuffer& stagin
   if (bytes == 0) {
     return;
   }
-  if (staging.size() < bytes) {
+  // Read in place where the host can read this memory quickly (cached); otherwise copied into
+  // `staging` first.
+  const bool inPlace = hasMemory(VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
+                                 VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+  if (!inPlace && staging.size() < bytes) {
     staging = VulkanBuffer(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   }
   context_->runOnce([&](VkCommandBuffer cmd) {
-    // Make every earlier shader write visible to the copy.
+    // Make every earlier shader and transfer write visible to the copy, or to the host.
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    barrier.dstAccessMask = inPlace ? VK_ACCESS_HOST_READ_BIT : VK_ACCESS_TRANSFER_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+                         inPlace ? VK_PIPELINE_STAGE_HOST_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0,
+                         nullptr, 0, nullptr);
+    if (inPlace) {
+      return;
+    }
     VkBufferCopy region{0, 0, bytes};
     vkCmdCopyBuffer(cmd, buffer_, staging.handle(), 1, &region);
     VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -108,7 +134,7 @@ void VulkanBuffer::download(void* data, VkDeviceSize bytes, VulkanBuffer& stagin
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
                          0, nullptr);
   });
-  std::memcpy(data, staging.mapped(), bytes);
+  std::memcpy(data, inPlace ? mapInPlace() : staging.mapped(), bytes);
 }
 
 }  // namespace wp
