@@ -17,25 +17,43 @@ constexpr uint32_t kMinBins = 4;
 // Below this many primitives a subtree is not worth a thread of its own.
 constexpr uint32_t kMinParallelPrims = 4096;
 
-// Everything binning and partitioning touch, in one 40-byte record, so the build streams
+// Four floats in one SIMD register (GCC's and Clang's vector extension, SSE on x86-64, NEON
+// on ARM): binning grows a box's three axes in one instruction instead of three, and maps a
+// centroid to its bins on all three at once (wavepath-bench-bvh's 1M triangles: 675-679 ->
+// 534-552 ms on one thread, 425-430 -> 339-340 ms on two; the same trees). x, y, z in the
+// first three lanes.
+typedef float Float4 __attribute__((vector_size(16)));
+typedef int32_t Int4 __attribute__((vector_size(16)));
+
+// glm::min and glm::max, lane by lane, with their rule for equal values, so that boxes come
+// out bit for bit as Aabb::grow makes them.
+Float4 min4(Float4 a, Float4 b) { return b < a ? b : a; }
+Float4 max4(Float4 a, Float4 b) { return a < b ? b : a; }
+Float4 float4(const glm::vec3& v) { return Float4{v.x, v.y, v.z, 0.0f}; }
+glm::vec3 vec3(Float4 v) { return glm::vec3(v[0], v[1], v[2]); }
+
+// Everything binning and partitioning touch, in one 48-byte record, so the build streams
 // through one array instead of gathering from three.
 struct PrimRef {
-  glm::vec3 centroid;
-  uint32_t index;
-  glm::vec3 lo;
-  glm::vec3 hi;
+  Float4 lo;
+  Float4 hi;  // with the primitive's index in the fourth lane's bits, which only max4 sees
+  Float4 centroid;
+  uint32_t index() const { return std::bit_cast<uint32_t>(hi[3]); }
 };
 
+// A bin's bounds; its count is kept apart, so the bounds fill two registers.
 struct Bin {
-  glm::vec3 lo{std::numeric_limits<float>::max()};
-  uint32_t count = 0;
-  glm::vec3 hi{-std::numeric_limits<float>::max()};
+  Float4 lo = Float4{} + std::numeric_limits<float>::max();
+  Float4 hi = Float4{} - std::numeric_limits<float>::max();
 };
 
-float boxArea(const glm::vec3& lo, const glm::vec3& hi) {
-  glm::vec3 e = hi - lo;
-  return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+// The area of the box (lo, hi) as boxArea computes it.
+float boxArea(Float4 lo, Float4 hi) {
+  Float4 e = hi - lo;
+  return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
 }
+
+Aabb aabb(Float4 lo, Float4 hi) { return Aabb{vec3(lo), vec3(hi)}; }
 
 struct Split {
   bool valid = false;
@@ -46,17 +64,20 @@ struct Split {
   Aabb left, right;
 };
 
-// Maps centroids to bins along one axis; the same mapping bins and partitions, so the
-// partition agrees exactly with the counts the split was chosen by.
+// Maps centroids to bins, on all three axes at once; the same mapping bins and partitions, so
+// the partition agrees exactly with the counts the split was chosen by.
 struct BinMapping {
-  glm::vec3 origin;
-  glm::vec3 scale;  // 0 on axes without extent: everything falls in bin 0
+  Float4 origin;
+  Float4 scale;  // 0 on axes without extent: everything falls in bin 0
   uint32_t count;
-  uint32_t bin(const glm::vec3& c, uint32_t axis) const {
-    float x = (c[axis] - origin[axis]) * scale[axis];
-    // Compared before the conversion, which is undefined for NaN and for values past uint32
-    // (an extent of infinity gives 0 * infinity; the loader bounds coordinates, this stays safe).
-    return x >= 0.0f && x < float(count) ? static_cast<uint32_t>(x) : (x >= float(count) ? count - 1 : 0u);
+  // A centroid's bin on each axis. Clamped before the conversion, which is undefined for NaN
+  // and for values past int32: below 0 and NaN (an extent of infinity gives 0 * infinity; the
+  // loader bounds coordinates, this stays safe) go to bin 0, count and beyond to the last.
+  Int4 bins(Float4 centroid) const {
+    Float4 x = (centroid - origin) * scale;
+    x = x >= 0.0f ? x : Float4{};
+    x = x < float(count) ? x : Float4{} + float(count - 1);
+    return __builtin_convertvector(x, Int4);
   }
 };
 
@@ -66,7 +87,9 @@ public:
           const BvhBuildOptions& options)
       : options_(options), refs_(bounds.size()), nodes_(2 * bounds.size() - 1) {
     for (size_t i = 0; i < bounds.size(); ++i) {
-      refs_[i] = {centroids[i], static_cast<uint32_t>(i), bounds[i].min, bounds[i].max};
+      Float4 hi = float4(bounds[i].max);
+      hi[3] = std::bit_cast<float>(static_cast<uint32_t>(i));
+      refs_[i] = {float4(bounds[i].min), hi, float4(centroids[i])};
     }
     uint32_t threads = options.threads ? options.threads : std::thread::hardware_concurrency();
     // Two levels beyond one task per thread leave room for uneven splits.
@@ -76,8 +99,8 @@ public:
   Bvh run() {
     Aabb bounds, centroidBounds;
     for (const PrimRef& r : refs_) {
-      bounds.grow(Aabb{r.lo, r.hi});
-      centroidBounds.grow(r.centroid);
+      bounds.grow(aabb(r.lo, r.hi));
+      centroidBounds.grow(vec3(r.centroid));
     }
     nodes_[0].bounds = bounds;
     build(0, 1, 0, static_cast<uint32_t>(refs_.size()), centroidBounds, 0);
@@ -85,7 +108,7 @@ public:
     bvh.nodes = bvh_detail::compactNodes(nodes_);
     bvh.primIndices.resize(refs_.size());
     for (size_t i = 0; i < refs_.size(); ++i) {
-      bvh.primIndices[i] = refs_[i].index;
+      bvh.primIndices[i] = refs_[i].index();
     }
     return bvh;
   }
@@ -122,8 +145,8 @@ private:
       // All centroids (nearly) equal, or the SAH split would break the depth budget.
       mid = medianSplit(begin, end, centroidBounds);
       for (uint32_t i = begin; i < end; ++i) {
-        (i < mid ? leftBounds : rightBounds).grow(Aabb{refs_[i].lo, refs_[i].hi});
-        (i < mid ? leftCentroids : rightCentroids).grow(refs_[i].centroid);
+        (i < mid ? leftBounds : rightBounds).grow(aabb(refs_[i].lo, refs_[i].hi));
+        (i < mid ? leftCentroids : rightCentroids).grow(vec3(refs_[i].centroid));
       }
     }
 
@@ -146,19 +169,22 @@ private:
   }
 
   Split findSplit(uint32_t begin, uint32_t end, const Aabb& bounds, const Aabb& centroidBounds) const {
-    BinMapping map = binMapping(centroidBounds, end - begin);
+    const BinMapping map = binMapping(centroidBounds, end - begin);
     const uint32_t binCount = map.count;
     std::array<std::array<Bin, kMaxBins>, 3> bins;
-    for (auto& axisBins : bins) {
-      std::fill_n(axisBins.begin(), binCount, Bin{});
+    std::array<std::array<uint32_t, kMaxBins>, 3> counts;
+    for (uint32_t axis = 0; axis < 3; ++axis) {
+      std::fill_n(bins[axis].begin(), binCount, Bin{});
+      std::fill_n(counts[axis].begin(), binCount, 0u);
     }
     for (uint32_t i = begin; i < end; ++i) {
       const PrimRef& r = refs_[i];
+      const Int4 index = map.bins(r.centroid);
       for (uint32_t axis = 0; axis < 3; ++axis) {
-        Bin& b = bins[axis][map.bin(r.centroid, axis)];
-        b.lo = glm::min(b.lo, r.lo);
-        b.hi = glm::max(b.hi, r.hi);
-        ++b.count;
+        Bin& b = bins[axis][index[axis]];
+        b.lo = min4(b.lo, r.lo);
+        b.hi = max4(b.hi, r.hi);
+        ++counts[axis][index[axis]];
       }
     }
 
@@ -169,23 +195,25 @@ private:
       // Right-to-left sweep: area and count of bins [i, binCount).
       std::array<float, kMaxBins> rightArea;
       std::array<uint32_t, kMaxBins> rightCount;
-      Aabb acc;
+      Bin acc;
       uint32_t count = 0;
       for (uint32_t i = binCount - 1; i > 0; --i) {
-        acc.grow(Aabb{bins[axis][i].lo, bins[axis][i].hi});
-        count += bins[axis][i].count;
-        rightArea[i] = count ? boxArea(acc.min, acc.max) : 0.0f;
+        acc.lo = min4(acc.lo, bins[axis][i].lo);
+        acc.hi = max4(acc.hi, bins[axis][i].hi);
+        count += counts[axis][i];
+        rightArea[i] = count ? boxArea(acc.lo, acc.hi) : 0.0f;
         rightCount[i] = count;
       }
-      acc = Aabb{};
+      acc = Bin{};
       count = 0;
       for (uint32_t i = 0; i + 1 < binCount; ++i) {
-        acc.grow(Aabb{bins[axis][i].lo, bins[axis][i].hi});
-        count += bins[axis][i].count;
+        acc.lo = min4(acc.lo, bins[axis][i].lo);
+        acc.hi = max4(acc.hi, bins[axis][i].hi);
+        count += counts[axis][i];
         if (count == 0 || rightCount[i + 1] == 0) {
           continue;
         }
-        float cost = c.intersection * (static_cast<float>(count) * boxArea(acc.min, acc.max) +
+        float cost = c.intersection * (static_cast<float>(count) * boxArea(acc.lo, acc.hi) +
                                        static_cast<float>(rightCount[i + 1]) * rightArea[i + 1]);
         if (cost < bestCost) {
           bestCost = cost;
@@ -201,9 +229,9 @@ private:
     }
     best.cost = c.traversal * bounds.area() + bestCost;
     for (uint32_t i = 0; i < binCount; ++i) {
-      const Bin& b = bins[best.axis][i];
-      if (b.count) {
-        (i <= best.lastLeftBin ? best.left : best.right).grow(Aabb{b.lo, b.hi});
+      if (counts[best.axis][i]) {
+        const Bin& b = bins[best.axis][i];
+        (i <= best.lastLeftBin ? best.left : best.right).grow(aabb(b.lo, b.hi));
       }
     }
     return best;
@@ -212,7 +240,7 @@ private:
   // Small nodes get fewer bins: sweeping 32 mostly empty bins would cost more than their
   // primitives do.
   static BinMapping binMapping(const Aabb& centroidBounds, uint32_t primCount) {
-    BinMapping map{centroidBounds.min, glm::vec3(0.0f), std::clamp(primCount, kMinBins, kMaxBins)};
+    BinMapping map{float4(centroidBounds.min), Float4{}, std::clamp(primCount, kMinBins, kMaxBins)};
     glm::vec3 extent = centroidBounds.extent();
     for (int axis = 0; axis < 3; ++axis) {
       float scale = static_cast<float>(map.count) / extent[axis];
@@ -229,13 +257,13 @@ private:
     BinMapping map = binMapping(centroidBounds, end - begin);
     uint32_t i = begin, j = end;
     while (i < j) {
-      if (map.bin(refs_[i].centroid, split.axis) <= split.lastLeftBin) {
-        leftCentroids.grow(refs_[i].centroid);
+      if (uint32_t(map.bins(refs_[i].centroid)[split.axis]) <= split.lastLeftBin) {
+        leftCentroids.grow(vec3(refs_[i].centroid));
         ++i;
       } else {
         --j;
         std::swap(refs_[i], refs_[j]);
-        rightCentroids.grow(refs_[j].centroid);
+        rightCentroids.grow(vec3(refs_[j].centroid));
       }
     }
     return i;
@@ -250,7 +278,7 @@ private:
     std::nth_element(refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
                      [axis](const PrimRef& a, const PrimRef& b) {
                        return a.centroid[axis] < b.centroid[axis] ||
-                              (a.centroid[axis] == b.centroid[axis] && a.index < b.index);
+                              (a.centroid[axis] == b.centroid[axis] && a.index() < b.index());
                      });
     return mid;
   }
