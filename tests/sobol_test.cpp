@@ -1,12 +1,15 @@
 // Tests of the Sobol sampler the GPU runs (sobol.h, sampler.h): the Pascal dimension against
-// the direction-number recurrence, stratification of every power-of-two prefix, uniformity
-// and independence over scrambles (chi-square), and the convergence rate on smooth integrands.
+// the direction-number recurrence, the four-lane draws against Burley's scalar algorithm,
+// stratification of every power-of-two prefix, uniformity and independence over scrambles
+// (chi-square), the convergence rate on smooth integrands, and a vertex's and a camera ray's
+// draws at once against the same draws one at a time.
 #include "shaders/common/sampler.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "support/chi_square.h"
@@ -58,6 +61,41 @@ TEST(Sobol, PascalDimensionMatchesTheDirectionNumbers) {
     ASSERT_EQ(gpu::reverseBits(gpu::sobolPascalReversed(i)), sobolSecondDimension(i)) << "index " << i;
   for (uint32_t i : {0x80000000u, 0xdeadbeefu, 0xffffffffu})
     EXPECT_EQ(gpu::reverseBits(gpu::sobolPascalReversed(i)), sobolSecondDimension(i)) << "index " << i;
+}
+
+// Burley 2020's shuffled, Owen-scrambled 2D Sobol point, one coordinate at a time in scalar
+// code, as sobol.h computed it before it drew four lanes at once.
+uint32_t laineKarras(uint32_t x, uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+float owenScrambled(uint32_t reversedFraction, uint32_t seed) {
+  return float(gpu::reverseBits(laineKarras(reversedFraction, seed)) >> 8u) * 5.9604644775390625e-8f;
+}
+glm::vec2 referenceSobol2(uint32_t index, uint32_t seed) {
+  const uint32_t shuffled = gpu::reverseBits(laineKarras(gpu::reverseBits(index), seed));
+  return {owenScrambled(shuffled, gpu::pcgHash(seed ^ 0x2c1b3c6du)),
+          owenScrambled(gpu::sobolPascalReversed(shuffled), gpu::pcgHash(seed ^ 0x297a2d39u))};
+}
+
+TEST(Sobol, FourLanesAreBurleysScalarDraws) {
+  for (uint32_t index : {0u, 1u, 2u, 3u, 255u, 256u, 65535u, 0x12345678u, 0xffffffffu}) {
+    for (uint32_t seed : {0u, 1u, 0x9e3779b9u, 0xdeadbeefu}) {
+      const glm::vec4 lanes = gpu::sobolScrambled4(index, glm::uvec4(seed, seed + 1u, seed + 2u, seed + 3u),
+                                                   glm::uvec4(WP_SOBOL_FIRST, WP_SOBOL_SECOND, WP_SOBOL_SECOND,
+                                                              WP_SOBOL_FIRST));
+      EXPECT_EQ(lanes.x, referenceSobol2(index, seed).x) << index << ", " << seed;
+      EXPECT_EQ(lanes.y, referenceSobol2(index, seed + 1u).y) << index << ", " << seed;
+      EXPECT_EQ(lanes.z, referenceSobol2(index, seed + 2u).y) << index << ", " << seed;
+      EXPECT_EQ(lanes.w, referenceSobol2(index, seed + 3u).x) << index << ", " << seed;
+      EXPECT_EQ(gpu::sobolScrambled2(index, seed), referenceSobol2(index, seed));
+      EXPECT_EQ(gpu::sobolScrambled1(index, seed), referenceSobol2(index, seed).x);
+    }
+  }
 }
 
 // A (0, m, 2)-net in base 2: each of the 2^m boxes of every shape 2^-a x 2^-(m-a) holds
@@ -164,6 +202,56 @@ TEST(Sampler, IndependentDrawsFollowTheStream) {
     EXPECT_EQ(d.u[i], gpu::rngFloat(state)) << "draw " << i;
   }
   EXPECT_EQ(d.samples.state, state);
+}
+
+// shade draws a vertex's seven numbers at once (drawVertex) and generate a camera ray's five
+// (drawCamera): each must be the number its dimension gives alone, and the independent
+// stream must move on exactly as the draws one after another move it.
+TEST(Sampler, VertexDrawsAreTheDrawsOfEachDimension) {
+  for (uint32_t sampler : {uint32_t(WP_SAMPLER_SOBOL), uint32_t(WP_SAMPLER_INDEPENDENT)}) {
+    for (uint32_t sampleIndex : {0u, 5u, 1023u}) {
+      for (uint32_t bounce : {0u, 1u, 7u}) {
+        for (bool light : {false, true}) {
+          for (bool roulette : {false, true}) {
+            gpu::PathSamples p = pixelSamples(sampler, 4321, sampleIndex);
+            const gpu::VertexDraws d = gpu::drawVertex(sampler, p, bounce, light, roulette);
+            const uint32_t first = gpu::vertexDimension(bounce);
+            const gpu::PathDraw3 l = gpu::drawPath3(sampler, p, first + WP_DIM_LIGHT_CHOICE);
+            if (light) p = l.samples;
+            const gpu::PathDraw3 b = gpu::drawPath3(sampler, p, first + WP_DIM_BSDF_LOBE);
+            p = b.samples;
+            const gpu::PathDraw1 r = gpu::drawPath1(sampler, p, first + WP_DIM_ROULETTE);
+            if (roulette) p = r.samples;
+            // Sobol draws every number (its samples do not move); the independent stream
+            // only those asked for, the others 0.
+            const bool sobol = sampler == WP_SAMPLER_SOBOL;
+            const std::string where = "sampler " + std::to_string(sampler) + ", sample " +
+                                      std::to_string(sampleIndex) + ", bounce " + std::to_string(bounce);
+            EXPECT_EQ(d.light, light || sobol ? l.u : glm::vec3(0.0f)) << where;
+            EXPECT_EQ(d.bsdf, b.u) << where;
+            EXPECT_EQ(d.roulette, roulette || sobol ? r.u : 0.0f) << where;
+            EXPECT_EQ(d.samples.state, p.state) << where;
+            EXPECT_EQ(d.samples.sampleIndex, p.sampleIndex) << where;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(Sampler, CameraDrawsAreTheDrawsOfEachDimension) {
+  for (uint32_t sampler : {uint32_t(WP_SAMPLER_SOBOL), uint32_t(WP_SAMPLER_INDEPENDENT)}) {
+    for (uint32_t sampleIndex : {0u, 5u, 1023u}) {
+      const gpu::PathSamples p = pixelSamples(sampler, 77, sampleIndex);
+      const gpu::CameraDraws d = gpu::drawCamera(sampler, p);
+      const gpu::PathDraw2 film = gpu::drawPath2(sampler, p, WP_DIM_FILM);
+      const gpu::PathDraw2 lens = gpu::drawPath2(sampler, film.samples, WP_DIM_LENS);
+      EXPECT_EQ(d.time, gpu::pathTime(sampler, p));
+      EXPECT_EQ(d.film, film.u);
+      EXPECT_EQ(d.lens, lens.u);
+      EXPECT_EQ(d.samples.state, lens.samples.state);
+    }
+  }
 }
 
 }  // namespace

@@ -303,48 +303,39 @@ WP_FN_INLINED ShadowConnection sampleDirectLight(WP_BUFFERS RenderParams params,
 
 // Russian roulette on a path whose throughput becomes `throughput` past v: from
 // params.rouletteStart on, it survives with probability max(throughput), clamped to 1,
-// decided by the vertex's roulette number of `samples`. The samples after it, and the
-// survival probability (0: the path ends).
-WP_STRUCT(RouletteResult)
-  PathSamples samples;
-  float survival;
-WP_STRUCT_END(RouletteResult)
-WP_FN_INLINED RouletteResult russianRoulette(RenderParams params, uint bounce, vec3 throughput, PathSamples samples) {
-  RouletteResult r;
-  r.samples = samples;
-  r.survival = 1.0f;
+// decided by the vertex's roulette number `u`. The survival probability (0: the path ends).
+WP_FN_INLINED float russianRoulette(RenderParams params, uint bounce, vec3 throughput, float u) {
+  float survival = 1.0f;
   if (bounce >= params.rouletteStart) {
-    r.survival = min(1.0f, maxComponent(throughput));
-    PathDraw1 draw = drawPath1(params.samplerKind, samples, vertexDimension(bounce) + WP_DIM_ROULETTE);
-    r.samples = draw.samples;
-    if (draw.u >= r.survival) {
-      r.survival = 0.0f;
+    survival = min(1.0f, maxComponent(throughput));
+    if (u >= survival) {
+      survival = 0.0f;
     }
   }
-  return r;
+  return survival;
 }
 
-// BSDF sampling at v with the draw `draw` (its numbers and the path's samples after them):
-// the continuation of the path, which survived Russian roulette, unless it ends here.
+// BSDF sampling and Russian roulette at v with the vertex's numbers `draws`: the
+// continuation of the path, which survived Russian roulette, unless it ends here.
 //
 // From the last vertex a ray is still traced, only to collect emission the light sample
 // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
 // with NEE alone, what only a delta lobe reaches.
-WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, PathDraw3 draw) {
+WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, VertexDraws draws) {
   NextRay next;
   next.exists = false;
-  MaterialSample bs = sampleBsdf(m, v.woLocal, draw.u, params.bsdfFlags);
+  MaterialSample bs = sampleBsdf(m, v.woLocal, draws.bsdf, params.bsdfFlags);
   bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
   if (v.bounce < params.maxBounces || params.mode != WP_MODE_NEE || isDelta) {
     vec3 nextThroughput = v.throughput * bs.weight;
-    RouletteResult roulette = russianRoulette(params, v.bounce, nextThroughput, draw.samples);
+    float survival = russianRoulette(params, v.bounce, nextThroughput, draws.roulette);
     vec3 wi = frameToWorld(v.frame, bs.wi);
     bool agrees = sidesAgree(v.woSide, dot(v.normal, wi), v.woLocal.z * bs.wi.z);
-    if (bs.pdf > 0.0f && agrees && roulette.survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
+    if (bs.pdf > 0.0f && agrees && survival > 0.0f && maxComponent(nextThroughput) > 0.0f) {
       vec3 origin = offsetRayOrigin(v.position, v.normal, wi);
-      nextThroughput = nextThroughput / roulette.survival;
+      nextThroughput = nextThroughput / survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;
-      next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, roulette.samples, v.bounce + 1u,
+      next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, draws.samples, v.bounce + 1u,
                              v.rayFlags);
       next.exists = true;
     }
@@ -372,6 +363,13 @@ WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, 
                                    uint primitive) {
   ShadeResult r;
   r.flags = 0u;
+  // The vertex's numbers first: they need only the ray, and a CPU device then computes their
+  // long chain of integer multiplies while the loads of the surface and material wait on
+  // memory.
+  bool lightSampled = samplesLights(params);
+  uint bounce = rayBounce(ray);
+  VertexDraws draws =
+      drawVertex(params.samplerKind, rayPathSamples(ray), bounce, lightSampled, bounce >= params.rouletteStart);
   vec3 direction = rayDirection(ray);
   vec3 throughput = rayThroughput(ray);
   SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, rayTime(ray));
@@ -408,20 +406,14 @@ WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, 
     v.rayFlags |= WP_RAY_FEATURES_TAKEN;
   }
   m.clearcoatNormal = localCoatNormal(WP_BUFFERS_ARG m, unmapped, v.frame);
-  PathSamples samples = rayPathSamples(ray);
-  uint samplerKind = params.samplerKind;
-  uint firstDimension = vertexDimension(v.bounce);
-  if (samplesLights(params)) {
-    PathDraw3 lightDraw = drawPath3(samplerKind, samples, firstDimension + WP_DIM_LIGHT_CHOICE);
-    samples = lightDraw.samples;
-    ShadowConnection shadow = sampleDirectLight(WP_BUFFERS_ARG params, v, m, lightDraw.u);
+  if (lightSampled) {
+    ShadowConnection shadow = sampleDirectLight(WP_BUFFERS_ARG params, v, m, draws.light);
     if (shadow.exists) {
       r.shadow = shadow.ray;
       r.flags |= WP_SHADE_SHADOW;
     }
   }
-  NextRay next =
-      sampleContinuation(params, v, m, drawPath3(samplerKind, samples, firstDimension + WP_DIM_BSDF_LOBE));
+  NextRay next = sampleContinuation(params, v, m, draws);
   if (next.exists) {
     r.next = next.ray;
     r.flags |= WP_SHADE_EXTEND;

@@ -57,6 +57,7 @@ typedef uint4 uvec4;
 #define make_vec4(x, y, z, w) ((float4)((x), (y), (z), (w)))
 #define make_uvec4(x, y, z, w) ((uint4)((x), (y), (z), (w)))
 #define toFloat(x) ((float)(x))
+#define toFloat4(x) convert_float4(x)
 #define notANumber(x) isnan(x)
 #define toUint(x) ((uint)(x))
 #define toInt(x) ((int)(x))

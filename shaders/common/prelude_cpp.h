@@ -51,6 +51,7 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define make_vec4(x, y, z, w) vec4((x), (y), (z), (w))
 #define make_uvec4(x, y, z, w) uvec4((x), (y), (z), (w))
 #define toFloat(x) static_cast<float>(x)
+#define toFloat4(x) vec4(x)
 inline bool notANumber(float x) { return std::isnan(x); }
 #define toUint(x) static_cast<uint>(x)
 #define toInt(x) static_cast<int>(x)

@@ -25,6 +25,7 @@
 #define make_vec4(x, y, z, w) vec4((x), (y), (z), (w))
 #define make_uvec4(x, y, z, w) uvec4((x), (y), (z), (w))
 #define toFloat(x) float(x)
+#define toFloat4(x) vec4(x)
 #define notANumber(x) isnan(x)
 #define toUint(x) uint(x)
 #define toInt(x) int(x)

@@ -9,11 +9,16 @@ WP_BEGIN
 
 // PCG-RXS-M-XS hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering"): a
 // well-mixed bijection on 32 bits, used to seed streams so neighbouring pixels decorrelate.
-WP_FN uint pcgHash(uint v) {
-  uint state = v * 747796405u + 2891336453u;
-  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-  return (word >> 22u) ^ word;
-}
+// Defined for a uint and, as pcgHash4, for each lane of a uvec4 by the same statements, so
+// that the two agree bit for bit (sobol.h draws four Sobol numbers at once).
+#define WP_DEFINE_PCG_HASH(name, T)                                      \
+  WP_FN T name(T v) {                                                    \
+    T state = v * 747796405u + 2891336453u;                              \
+    T word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;    \
+    return (word >> 22u) ^ word;                                         \
+  }
+WP_DEFINE_PCG_HASH(pcgHash, uint)
+WP_DEFINE_PCG_HASH(pcgHash4, uvec4)
 
 // The stream state of path `pixel`, sample `sampleIndex`, for a render seeded by `seed`.
 WP_FN uint rngSeed(uint pixel, uint sampleIndex, uint seed) {

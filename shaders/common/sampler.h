@@ -27,10 +27,12 @@ WP_BEGIN
 #define WP_DIM_ROULETTE 4u         // 1D: Russian roulette
 #define WP_DIMS_PER_BOUNCE 5u
 
-// The seed of dimension `dimension` of the paths of pixel seed `pathSeed`.
-WP_FN uint sobolDimensionSeed(uint pathSeed, uint dimension) {
-  return pcgHash(pathSeed ^ pcgHash(dimension + 0x3c6ef372u));
-}
+// The seed of dimension `dimension` of the paths of pixel seed `pathSeed`; with the suffix 4,
+// of four dimensions at once (sobol.h).
+#define WP_DEFINE_SOBOL_DIMENSION_SEED(name, T, hash) \
+  WP_FN T name(uint pathSeed, T dimension) { return hash(pathSeed ^ hash(dimension + 0x3c6ef372u)); }
+WP_DEFINE_SOBOL_DIMENSION_SEED(sobolDimensionSeed, uint, pcgHash)
+WP_DEFINE_SOBOL_DIMENSION_SEED(sobolDimensionSeed4, uvec4, pcgHash4)
 
 // The first dimension of the vertex the ray of `bounce` reaches.
 WP_FN uint vertexDimension(uint bounce) { return WP_DIMS_CAMERA + bounce * WP_DIMS_PER_BOUNCE; }
@@ -112,6 +114,90 @@ WP_FN_INLINED float pathTime(uint samplerKind, PathSamples p) {
     return sobolScrambled1(p.sampleIndex, sobolDimensionSeed(p.state, WP_DIM_TIME));
   }
   return rngTime(p.state);
+}
+
+// The numbers of a camera ray: its pixel's film point, its aperture point and its shutter
+// time, as pathTime, drawPath2 (film) and drawPath2 (lens) give them, and the path's
+// samples after them. Sobol draws both points in one sobolScrambled4.
+WP_STRUCT(CameraDraws)
+  PathSamples samples;
+  vec2 film;
+  vec2 lens;
+  float time;
+WP_STRUCT_END(CameraDraws)
+
+WP_FN_INLINED CameraDraws drawCamera(uint samplerKind, PathSamples p) {
+  CameraDraws d;
+  d.time = pathTime(samplerKind, p);
+  if (samplerKind == WP_SAMPLER_SOBOL) {
+    vec4 u = sobolScrambled4(p.sampleIndex,
+                             sobolDimensionSeed4(p.state, make_uvec4(WP_DIM_FILM, WP_DIM_FILM, WP_DIM_LENS, WP_DIM_LENS)),
+                             make_uvec4(WP_SOBOL_FIRST, WP_SOBOL_SECOND, WP_SOBOL_FIRST, WP_SOBOL_SECOND));
+    d.samples = p;
+    d.film = make_vec2(u.x, u.y);
+    d.lens = make_vec2(u.z, u.w);
+    return d;
+  }
+  PathDraw2 film = drawPath2(samplerKind, p, WP_DIM_FILM);
+  PathDraw2 lens = drawPath2(samplerKind, film.samples, WP_DIM_LENS);
+  d.samples = lens.samples;
+  d.film = film.u;
+  d.lens = lens.u;
+  return d;
+}
+
+// The numbers of the path vertex of `bounce`, as drawPath3 (the light sample's choice and
+// point), drawPath3 (the BSDF sample's lobe and direction) and drawPath1 (Russian roulette)
+// give them in that order, and the path's samples after them. The light's are drawn only
+// with `light` and the roulette's only with `roulette` (0 otherwise), so that the
+// independent stream moves on only by what the vertex uses. Sobol draws all seven in two
+// sobolScrambled4.
+WP_STRUCT(VertexDraws)
+  PathSamples samples;
+  vec3 light;  // x chooses, y and z place
+  vec3 bsdf;   // likewise
+  float roulette;
+WP_STRUCT_END(VertexDraws)
+
+WP_FN_INLINED VertexDraws drawVertex(uint samplerKind, PathSamples p, uint bounce, bool light, bool roulette) {
+  VertexDraws d;
+  uint first = vertexDimension(bounce);
+  if (samplerKind == WP_SAMPLER_SOBOL) {
+    // The first coordinates of the four dimensions, then the second ones of the two 2D
+    // dimensions and the roulette number (twice, filling the lanes).
+    vec4 firsts = sobolScrambled4(
+        p.sampleIndex,
+        sobolDimensionSeed4(p.state, first + make_uvec4(WP_DIM_LIGHT_CHOICE, WP_DIM_LIGHT_POINT, WP_DIM_BSDF_LOBE,
+                                                        WP_DIM_BSDF_DIRECTION)),
+        make_uvec4(WP_SOBOL_FIRST, WP_SOBOL_FIRST, WP_SOBOL_FIRST, WP_SOBOL_FIRST));
+    vec4 rest = sobolScrambled4(
+        p.sampleIndex,
+        sobolDimensionSeed4(p.state, first + make_uvec4(WP_DIM_LIGHT_POINT, WP_DIM_BSDF_DIRECTION, WP_DIM_ROULETTE,
+                                                        WP_DIM_ROULETTE)),
+        make_uvec4(WP_SOBOL_SECOND, WP_SOBOL_SECOND, WP_SOBOL_FIRST, WP_SOBOL_FIRST));
+    d.samples = p;
+    d.light = make_vec3(firsts.x, firsts.y, rest.x);
+    d.bsdf = make_vec3(firsts.z, firsts.w, rest.y);
+    d.roulette = rest.z;
+    return d;
+  }
+  d.light = make_vec3(0.0f, 0.0f, 0.0f);
+  d.roulette = 0.0f;
+  if (light) {
+    PathDraw3 lightDraw = drawPath3(samplerKind, p, first + WP_DIM_LIGHT_CHOICE);
+    p = lightDraw.samples;
+    d.light = lightDraw.u;
+  }
+  PathDraw3 bsdfDraw = drawPath3(samplerKind, p, first + WP_DIM_BSDF_LOBE);
+  p = bsdfDraw.samples;
+  d.bsdf = bsdfDraw.u;
+  if (roulette) {
+    PathDraw1 rouletteDraw = drawPath1(samplerKind, p, first + WP_DIM_ROULETTE);
+    p = rouletteDraw.samples;
+    d.roulette = rouletteDraw.u;
+  }
+  d.samples = p;
+  return d;
 }
 
 WP_END

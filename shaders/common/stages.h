@@ -37,14 +37,12 @@ WP_FN_INLINED PathRay cameraPathRay(RenderParams params, PassConstants pc, uint 
 
   uint samplerKind = params.samplerKind;
   PathSamples samples = startPathSamples(samplerKind, pixel, sampleIndex, params.seed);
-  float time = pathTime(samplerKind, samples);
-  PathDraw2 jitter = drawPath2(samplerKind, samples, WP_DIM_FILM);
-  PathDraw2 lens = drawPath2(samplerKind, jitter.samples, WP_DIM_LENS);
+  CameraDraws draws = drawCamera(samplerKind, samples);
   uint width = params.width;
-  vec2 film = make_vec2(toFloat(pixel % width), toFloat(pixel / width)) + jitter.u;
-  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, lens.u);
-  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), time, lens.samples,
-                     0u, 0u);
+  vec2 film = make_vec2(toFloat(pixel % width), toFloat(pixel / width)) + draws.film;
+  CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, draws.lens);
+  return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), draws.time,
+                     draws.samples, 0u, 0u);
 }
 
 // The closest hit of `ray`, as shade reads it.
