@@ -109,7 +109,7 @@ WP_FN float plasticSpecularProbability(vec3 albedo, SpecularLayer layer, float r
 // reflect on the way in and out (energy_compensation.h), which keeps f reciprocal and a
 // white base at albedo exactly 1 at every roughness, where the spec's mix gives a smooth
 // surface up to twice the light at grazing angles and a rough one 7% too little.
-WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, SpecularLayer layer, bool disneyBase, uint flags, vec3 wo,
+WP_FN_INLINED BsdfEval evalPlastic(vec3 albedo, float roughness, SpecularLayer layer, bool disneyBase, uint flags, vec3 wo,
                            vec3 wi) {
   float side = sideOf(wo);
   vec3 o = mirrorZ(wo, side);
@@ -133,7 +133,7 @@ WP_FN BsdfEval evalPlastic(vec3 albedo, float roughness, SpecularLayer layer, bo
 }
 
 // u.x picks the lobe, u.yz the direction.
-WP_FN MaterialSample samplePlastic(vec3 albedo, float roughness, SpecularLayer layer, bool disneyBase, uint flags,
+WP_FN_INLINED MaterialSample samplePlastic(vec3 albedo, float roughness, SpecularLayer layer, bool disneyBase, uint flags,
                                    vec3 wo, vec3 u) {
   float side = sideOf(wo);
   vec3 o = mirrorZ(wo, side);

@@ -80,7 +80,7 @@ WP_FN float ggxMultipleScatteringShare(vec3 f0, float roughness, float cosO) {
 // out. For a white Lambertian base the two then reflect exactly 1 at every angle and
 // roughness in the largest channel, at most 1 in the others (the base's share integrates to
 // 1 - E_s(o)); the product form keeps it reciprocal. At roughness 0 E_s is Schlick's F itself.
-WP_FN float specularLayerTransmission(float f0, float f90, float roughness, float cosO, float cosI) {
+WP_FN_INLINED float specularLayerTransmission(float f0, float f90, float roughness, float cosO, float cosI) {
   float meanAlbedo = ggxSpecularMeanAlbedo(f0, f90, roughness);
   return (1.0f - ggxSpecularAlbedo(f0, f90, roughness, cosO)) * (1.0f - ggxSpecularAlbedo(f0, f90, roughness, cosI)) /
          max(1.0f - meanAlbedo, 1e-6f);

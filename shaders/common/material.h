@@ -108,7 +108,7 @@ WP_FN float rescaleUniform(float u, float probability) { return min(u / probabil
 // u in [0, 1)^3: u.x picks the base lobe (and, rescaled, the lobe's own reflect/refract or
 // specular/diffuse choice), u.yz the direction. A delta sample carries WP_SAMPLE_DELTA and
 // its pdf is the probability of the delta lobe.
-WP_FN MaterialSample sampleBaseMaterial(SurfaceMaterial m, vec3 wo, vec3 u, uint flags) {
+WP_FN_INLINED MaterialSample sampleBaseMaterial(SurfaceMaterial m, vec3 wo, vec3 u, uint flags) {
   LobeWeights w = lobeWeightsOf(m);
   float alpha = alphaFromRoughness(m.roughness);
   MaterialSample s;
