@@ -17,8 +17,8 @@
 
 WP_BEGIN
 
-// The helpers below are each defined for a uint and, with the suffix 4, for every lane of a
-// uvec4, by the same statements (OpenCL C has no overloading).
+// The helpers below that both forms use are defined for a uint and, with the suffix 4, for
+// every lane of a uvec4, by the same statements (OpenCL C has no overloading).
 
 // The bits of x in reverse order (OpenCL 1.2 has no builtin for it).
 #define WP_DEFINE_REVERSE_BITS(name, T)                                 \
@@ -35,16 +35,15 @@ WP_DEFINE_REVERSE_BITS(reverseBits4, uvec4)
 // A seeded permutation of 32-bit words in which each bit is flipped or not depending only
 // on the bits below it (Laine & Karras 2011; the constants are Burley's): applied to a
 // bit-reversed fraction it is a nested uniform (Owen) scramble, which keeps a net a net.
-#define WP_DEFINE_LAINE_KARRAS(name, T) \
-  WP_FN T name(T x, T seed) {           \
-    x += seed;                          \
-    x ^= x * 0x6c50b47cu;               \
-    x ^= x * 0xb82f1e52u;               \
-    x ^= x * 0xc7afe638u;               \
-    x ^= x * 0x8d22f6e6u;               \
-    return x;                           \
-  }
-WP_DEFINE_LAINE_KARRAS(laineKarrasPermutation4, uvec4)
+// Only the four-lane form is needed.
+WP_FN uvec4 laineKarrasPermutation4(uvec4 x, uvec4 seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
 
 // The second Sobol dimension, bit-reversed: its generator is the Pascal matrix mod 2, so
 // digit j of the fraction (weight 2^-(j+1)) is the XOR of the index bits k whose binary
