@@ -388,7 +388,7 @@ WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, 
   // colour, a metal's reflectivity, a glass's tint. The normal is the shading normal (normal
   // map included) turned towards the ray.
   bool takesFeatures = !rayFeaturesTaken(ray) && !bsdfIsPerfectlySpecular(m);
-  if (takesFeatures || rayBounce(ray) == 0u) {
+  if (takesFeatures || bounce == 0u) {
     vec3 n = dot(s.normal, wo) < 0.0f ? -s.shadingNormal : s.shadingNormal;
     vec3 zero = make_vec3(0.0f, 0.0f, 0.0f);
     r.features = makePathFeatures(takesFeatures ? albedoOf(m) : zero, takesFeatures ? n : zero,
@@ -397,7 +397,7 @@ WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, 
   }
 
   r.radiance = emissionAtHit(WP_BUFFERS_ARG params, ray, s, m, wo, throughput, t);
-  if (rayBounce(ray) > params.maxBounces) {
+  if (bounce > params.maxBounces) {
     return r;
   }
 

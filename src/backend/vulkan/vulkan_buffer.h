@@ -29,7 +29,8 @@ public:
   // upload of the instanced scene (--timings) 304-317 -> 243-260 ms.
   void upload(const void* data, VkDeviceSize bytes);
   // Copies the buffer's first `bytes` into host memory and waits: in place where its memory is
-  // host-visible and cached, else through a staging buffer.
+  // host-visible and cached, else through a staging buffer (lavapipe's image write of a
+  // 1920x1080 render 385-419 -> 317-358 ms in place).
   void download(void* data, VkDeviceSize bytes);
   // The same through `staging`, a host-visible buffer kept by the caller and grown when too
   // small (and left alone when the buffer is read in place): for repeated readbacks, where
