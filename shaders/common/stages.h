@@ -112,11 +112,37 @@ WP_FN_INLINED void extendStage(WP_BUFFERS RenderParams params, PassConstants pc,
   WP_BUFFER(hits)[i] = extendRay(WP_BUFFERS_ARG params, WP_LOAD(rays, queueEntry(queue, i)));
 }
 
+#if WP_WORK_ITEMS_ARE_THREADS
+// Where work-items are threads, a work-group's items run one after another, and shade waited
+// for the triangle it reads first: the triangle and its shading record were last read by
+// extend, long enough before to have left the core's caches (their first loads took a third
+// of PoCL's shade samples on the instanced scene). So each work-item starts fetching the
+// surface of the hit that the work-item this many places later shades.
+#define WP_SHADE_PREFETCH_DISTANCE 4u
+// Starts fetching the triangle and the shading record (its three cache lines) of entry j's
+// hit, if j is in the queue and its hit is on a triangle.
+WP_FN_INLINED void prefetchSurfaceOfHit(WP_BUFFERS WorkQueue queue, uint j) {
+  if (j < queueSize(WP_BUFFERS_ARG queue)) {
+    uint primitive = hitPrimitive(WP_LOAD(hits, j));
+    if (primitive != WP_INVALID) {
+      WP_PREFETCH(WP_LOAD(triangles, primitive).v0);
+      WP_PREFETCH(WP_LOAD(triangleShading, primitive).normal0);
+      WP_PREFETCH(WP_LOAD(triangleShading, primitive).colors);
+      WP_PREFETCH(WP_LOAD(triangleShading, primitive).texCoord1Vertex2);
+    }
+  }
+}
+#endif
+
 // Shade, work item `i` (below the size of the bounce's ray queue): the vertex that entry i
 // reached, its radiance added to the path. The kernel appends the continuation and the
 // shadow ray the result holds to continuationQueue and shadowQueue.
 WP_FN_INLINED ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstants pc, uint i) {
-  PathRay ray = WP_LOAD(rays, queueEntry(rayQueue(pc.bounce, params.maxPaths), i));
+  WorkQueue queue = rayQueue(pc.bounce, params.maxPaths);
+#if WP_WORK_ITEMS_ARE_THREADS
+  prefetchSurfaceOfHit(WP_BUFFERS_ARG queue, i + WP_SHADE_PREFETCH_DISTANCE);
+#endif
+  PathRay ray = WP_LOAD(rays, queueEntry(queue, i));
   ShadeResult r = shadePath(WP_BUFFERS_ARG params, ray, WP_LOAD(hits, i));
   if (r.radiance.x != 0.0f || r.radiance.y != 0.0f || r.radiance.z != 0.0f) {
     addPathRadiance(WP_BUFFERS_ARG rayPathSlot(ray), r.radiance);
