@@ -41,9 +41,9 @@ std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint
   return buffer;
 }
 
-Accumulation accumulationOfBuffer(const std::vector<glm::vec4>& buffer, uint32_t pixels) {
+Accumulation accumulationOfBuffer(const glm::vec4* buffer, uint32_t pixels) {
   Accumulation result;
-  auto at = buffer.begin();
+  const glm::vec4* at = buffer;
   for (std::vector<glm::vec4>* layer : result.layers()) {
     layer->assign(at, at + pixels);
     at += pixels;

@@ -122,8 +122,9 @@ struct Accumulation {
 // The accumulation buffer's contents for `accumulation` (Binding::accumulation: its layers
 // one after another); throws wp::Error when a layer does not hold `pixels` entries.
 std::vector<glm::vec4> accumulationBuffer(const Accumulation& accumulation, uint32_t pixels);
-// The accumulation the buffer's contents `buffer` hold, for `pixels` pixels.
-Accumulation accumulationOfBuffer(const std::vector<glm::vec4>& buffer, uint32_t pixels);
+// The accumulation that the buffer's contents hold, for `pixels` pixels: read where the device
+// lets the host see them (mapped), so each layer is copied once, into its own vector.
+Accumulation accumulationOfBuffer(const glm::vec4* buffer, uint32_t pixels);
 
 class Backend {
 public:

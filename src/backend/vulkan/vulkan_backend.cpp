@@ -496,9 +496,12 @@ PassResult VulkanBackend::endPass() {
 }
 
 Accumulation VulkanBackend::readAccumulation() {
-  std::vector<glm::vec4> buffer(uint64_t(WP_ACCUMULATION_LAYERS) * pixelCount_);
-  accumulation_.download(buffer.data(), buffer.size() * sizeof(glm::vec4), accumulationReadback_);
-  return accumulationOfBuffer(buffer, pixelCount_);
+  Accumulation result;
+  accumulation_.download(uint64_t(WP_ACCUMULATION_LAYERS) * pixelCount_ * sizeof(glm::vec4), accumulationReadback_,
+                         [&](const void* bytes) {
+                           result = accumulationOfBuffer(static_cast<const glm::vec4*>(bytes), pixelCount_);
+                         });
+  return result;
 }
 
 void VulkanBackend::writeAccumulation(const Accumulation& accumulation) {

@@ -99,12 +99,7 @@ void VulkanBuffer::upload(const void* data, VkDeviceSize bytes) {
   });
 }
 
-void VulkanBuffer::download(void* data, VkDeviceSize bytes) {
-  VulkanBuffer staging;
-  download(data, bytes, staging);
-}
-
-void VulkanBuffer::download(void* data, VkDeviceSize bytes, VulkanBuffer& staging) {
+void VulkanBuffer::download(VkDeviceSize bytes, VulkanBuffer& staging, const std::function<void(const void*)>& read) {
   if (bytes == 0) {
     return;
   }
@@ -134,7 +129,7 @@ void VulkanBuffer::download(void* data, VkDeviceSize bytes, VulkanBuffer& stagin
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
                          0, nullptr);
   });
-  std::memcpy(data, inPlace ? mapInPlace() : staging.mapped(), bytes);
+  read(inPlace ? mapInPlace() : staging.mapped());
 }
 
 }  // namespace wp

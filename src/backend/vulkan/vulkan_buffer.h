@@ -3,6 +3,8 @@
 
 #include <volk.h>
 
+#include <functional>
+
 namespace wp {
 
 class VulkanContext;
@@ -28,15 +30,13 @@ public:
   // staging buffer. In place saves a copy and the staging buffer's fresh pages: lavapipe's
   // upload of the instanced scene (--timings) 304-317 -> 243-260 ms.
   void upload(const void* data, VkDeviceSize bytes);
-  // Copies the buffer's first `bytes` into host memory and waits: in place where its memory is
-  // host-visible and cached, else through a staging buffer (lavapipe's image write of a
-  // 1920x1080 render 385-419 -> 317-358 ms in place).
-  void download(void* data, VkDeviceSize bytes);
-  // The same through `staging`, a host-visible buffer kept by the caller and grown when too
-  // small (and left alone when the buffer is read in place): for repeated readbacks, where
-  // allocating a fresh one each time costs more than the copy (the viewer's frames: 4x at
-  // 1280x720 on lavapipe).
-  void download(void* data, VkDeviceSize bytes, VulkanBuffer& staging);
+  // Waits for the device's writes, then hands the buffer's first `bytes` to `read` in host
+  // memory: in place where its memory is host-visible and cached (lavapipe's image write of a
+  // 1920x1080 render 385-419 -> 317-358 ms), else copied into `staging`, a host-visible buffer
+  // kept by the caller and grown when too small: for repeated readbacks, where allocating a
+  // fresh one each time costs more than the copy (the viewer's frames: 4x at 1280x720 on
+  // lavapipe). `read` copies what it keeps: the pointer is valid only during the call.
+  void download(VkDeviceSize bytes, VulkanBuffer& staging, const std::function<void(const void*)>& read);
 
 private:
   void release();
