@@ -1,6 +1,8 @@
-// Shade classes (shade.comp): which scenes Vulkan shades with two pipelines, and that the
-// split changes no pixel: the diffuse class defers every hit that needs glTF's BRDF to the
-// second pipeline, which shades it as the single pipeline would, into the same path slot.
+// What Vulkan builds for a scene: the stages specialized to the scene's features
+// (prelude_glsl.h) and shade split by class (shade.comp). Which scenes get which, and that
+// neither changes a pixel: the diffuse class defers every hit that needs glTF's BRDF to the
+// second pipeline, which shades it as the single pipeline would, into the same path slot, and
+// the code a feature's constant compiles away is code the scene never runs.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -39,14 +41,49 @@ TEST(ShadeClasses, AreThoseOfTheMaterialsTheSurfacesUse) {
   EXPECT_FALSE(box.features().hasBothShadeClasses());
 }
 
+TEST(SceneFeatures, MetallicOnlyWhereAUsedMaterialHasMetalness) {
+  // glTF's default metalness is 1: materials.gltf's metals and its lamp's default both count.
+  EXPECT_TRUE(packedAsset("materials.gltf").features().metallic);
+  GpuScene box = packedAsset("cornell-box.gltf");
+  for (gpu::GpuMaterial& m : box.materials) {
+    m.info.x = WP_MATERIAL_GLTF;
+    m.surface.x = 0.0f;
+  }
+  SceneFeatures f = box.features();
+  EXPECT_TRUE(f.microfacet);
+  EXPECT_FALSE(f.metallic) << "no material has metalness";
+  // A metal no surface has adds no code...
+  gpu::GpuMaterial metal = box.materials[0];
+  metal.surface.x = 0.5f;
+  box.materials.push_back(metal);
+  EXPECT_FALSE(box.features().metallic);
+  // ...until a triangle has it.
+  box.triangles[0].info.x = uint32_t(box.materials.size() - 1);
+  EXPECT_TRUE(box.features().metallic);
+  // Ideal diffuse materials have no metal lobe, whatever their factor.
+  box.materials.back().info.x = WP_MATERIAL_LAMBERT;
+  EXPECT_FALSE(box.features().metallic);
+}
+
+// How renderVulkan builds the stages and the scene.
+struct VulkanBuild {
+  bool split = true;            // shade split by class where the scene has both
+  bool specialize = true;       // the stages specialized to the scene's features
+  bool withoutMetal = false;    // every material's metalness 0 (GpuMaterial.surface.x)
+};
+
 // The accumulation of `asset` (small, a few samples, every bounce) rendered on Vulkan under
-// the validation layer, with shade split by class or not.
-Accumulation renderVulkan(const char* asset, bool split) {
+// the validation layer, built as `build` says.
+Accumulation renderVulkan(const char* asset, VulkanBuild build) {
   const BackendChoice choice{"vulkan", -1, true, "readback"};
   std::unique_ptr<Backend> backend = createBackend(choice);
-  dynamic_cast<VulkanBackend&>(*backend).splitShadeByMaterial(split);
+  dynamic_cast<VulkanBackend&>(*backend).splitShadeByMaterial(build.split);
+  dynamic_cast<VulkanBackend&>(*backend).specializeToScene(build.specialize);
   const Scene scene = loadScene(sourceDirectory() / "assets" / asset);
-  const GpuScene gpuScene = packScene(scene);
+  GpuScene gpuScene = packScene(scene);
+  if (build.withoutMetal) {
+    for (gpu::GpuMaterial& m : gpuScene.materials) m.surface.x = 0.0f;
+  }
   RenderSettings settings;
   settings.width = 64;
   settings.height = 48;
@@ -59,6 +96,16 @@ Accumulation renderVulkan(const char* asset, bool split) {
   return backend->readAccumulation();
 }
 
+// Every layer of `a` and `b` the same, bit for bit, and `a` not black.
+void expectSameBitForBit(const Accumulation& a, const Accumulation& b) {
+  double total = 0.0;
+  for (const glm::vec4& s : a.sum) total += s.x + s.y + s.z;
+  EXPECT_GT(total, 0.0) << "the render is black";
+  for (uint32_t layer = 0; layer < WP_ACCUMULATION_LAYERS; ++layer) {
+    EXPECT_TRUE(*a.layers()[layer] == *b.layers()[layer]) << "layer " << layer << " differs";
+  }
+}
+
 TEST(ShadeClasses, SplitShadeMakesTheSameImageBitForBit) {
   // Bit for bit, not within a tolerance: both runs trace the same paths from the same random
   // numbers and each vertex is shaded by the same code for its material, only in another
@@ -66,14 +113,23 @@ TEST(ShadeClasses, SplitShadeMakesTheSameImageBitForBit) {
   // Lambertian, changes the radiance sums.
   for (const char* asset : {"materials.gltf", "animated.gltf"}) {
     SCOPED_TRACE(asset);
-    const Accumulation split = renderVulkan(asset, true);
-    const Accumulation single = renderVulkan(asset, false);
-    double total = 0.0;
-    for (const glm::vec4& s : split.sum) total += s.x + s.y + s.z;
-    EXPECT_GT(total, 0.0) << "the split render is black";
-    for (uint32_t layer = 0; layer < WP_ACCUMULATION_LAYERS; ++layer) {
-      EXPECT_TRUE(*split.layers()[layer] == *single.layers()[layer]) << "layer " << layer << " differs";
-    }
+    expectSameBitForBit(renderVulkan(asset, {.split = true}), renderVulkan(asset, {.split = false}));
+  }
+}
+
+TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
+  // Bit for bit too: a feature's constant may only remove code that the scene's materials
+  // never run (a metal lobe of weight 0, glass of transmission 0). The project's box turns
+  // every feature off (its materials are ideal diffuse), materials.gltf keeps most, and
+  // lamps.gltf without metalness keeps glTF's BRDF without its metal lobe.
+  struct Case {
+    const char* asset;
+    bool withoutMetal;
+  };
+  for (const Case c : {Case{"cornell-box.gltf", false}, Case{"materials.gltf", false}, Case{"lamps.gltf", true}}) {
+    SCOPED_TRACE(c.asset);
+    expectSameBitForBit(renderVulkan(c.asset, {.specialize = true, .withoutMetal = c.withoutMetal}),
+                        renderVulkan(c.asset, {.specialize = false, .withoutMetal = c.withoutMetal}));
   }
 }
 

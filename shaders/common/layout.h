@@ -339,6 +339,7 @@ WP_FN GpuPlane makeGpuPlane(vec3 normal, float distance, uint material) {
   F(uvec4, clearcoatMaps)
 WP_RECORD(GpuMaterial)
 WP_FN uint materialKind(GpuMaterial m) { return m.info.x; }  // WP_MATERIAL_*
+WP_FN float materialMetallic(GpuMaterial m) { return m.surface.x; }
 WP_FN float materialTransmission(GpuMaterial m) { return m.surface.w; }
 WP_FN vec3 materialSpecularColor(GpuMaterial m) { return make_vec3(m.specular.x, m.specular.y, m.specular.z); }
 WP_FN float materialSpecularWeight(GpuMaterial m) { return m.specular.w; }
@@ -367,11 +368,13 @@ WP_FN float materialAlphaCutoff(GpuMaterial m) { return asFloat(m.alphaInfo.y); 
 
 // What a material needs of the shade stage's code, as bits: ORed over the materials, the
 // scene's features (GpuScene::features); none or some, its shade class (below). glTF's BRDF
-// needs the microfacet code, its clear coat or sheen the layers, its transmission the glass;
-// ideal diffuse and unlit materials need none of them.
+// needs the microfacet code, its clear coat or sheen the layers, its transmission the glass,
+// its metalness the metal lobe; ideal diffuse and unlit materials need none of them. (A
+// texture only scales its factor, so a factor of 0 means none anywhere on the surface.)
 #define WP_NEEDS_MICROFACET 1u
 #define WP_NEEDS_LAYERS 2u
 #define WP_NEEDS_TRANSMISSION 4u
+#define WP_NEEDS_METAL 8u
 WP_FN uint materialShadeNeeds(GpuMaterial m) {
   uint kind = materialKind(m);
   if (kind == WP_MATERIAL_LAMBERT || kind == WP_MATERIAL_UNLIT) {
@@ -383,6 +386,9 @@ WP_FN uint materialShadeNeeds(GpuMaterial m) {
   }
   if (materialTransmission(m) > 0.0f) {
     needs |= WP_NEEDS_TRANSMISSION;
+  }
+  if (materialMetallic(m) > 0.0f) {
+    needs |= WP_NEEDS_METAL;
   }
   return needs;
 }

@@ -88,7 +88,7 @@ WP_FN BsdfEval evalBaseMaterial(SurfaceMaterial m, vec3 wo, vec3 wi, uint flags)
   LobeWeights w = lobeWeightsOf(m);
   float alpha = alphaFromRoughness(m.roughness);
   BsdfEval e = noEval();
-  if (w.metal > 0.0f) {
+  if (WP_SCENE_METALLIC && w.metal > 0.0f) {
     e = addWeighted(e, evalMetal(m.baseColor, m.roughness, wo, wi), w.metal);
   }
   if (WP_SCENE_TRANSMISSIVE && w.glass > 0.0f) {
@@ -113,7 +113,9 @@ WP_FN_INLINED MaterialSample sampleBaseMaterial(SurfaceMaterial m, vec3 wo, vec3
   float alpha = alphaFromRoughness(m.roughness);
   MaterialSample s;
   float chosen;
-  if (u.x < w.metal) {
+  // (WP_SCENE_METALLIC false: no material has metalness, w.metal is 0 and this never runs,
+  // and Vulkan compiles the metal lobe away.)
+  if (WP_SCENE_METALLIC && u.x < w.metal) {
     chosen = w.metal;
     s = sampleMetal(m.baseColor, m.roughness, wo, make_vec3(rescaleUniform(u.x, w.metal), u.y, u.z));
   } else {

@@ -46,6 +46,7 @@ layout(constant_id = 1) const bool WP_SCENE_LAYERED = true;       // material.h
 layout(constant_id = 2) const bool WP_SCENE_TEXTURED = true;      // texture.h
 layout(constant_id = 3) const bool WP_SCENE_TRANSMISSIVE = true;  // material.h
 layout(constant_id = 4) const bool WP_SCENE_MICROFACET = true;    // bsdf.h
+layout(constant_id = 5) const bool WP_SCENE_METALLIC = true;      // material.h
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

@@ -522,7 +522,16 @@ SceneFeatures SceneFeatures::withNeeds(uint32_t needs) const {
   f.microfacet = (needs & WP_NEEDS_MICROFACET) != 0;
   f.layered = (needs & WP_NEEDS_LAYERS) != 0;
   f.transmissive = (needs & WP_NEEDS_TRANSMISSION) != 0;
+  f.metallic = (needs & WP_NEEDS_METAL) != 0;
   return f;
+}
+
+SceneFeatures SceneFeatures::everything() {
+  SceneFeatures f;
+  f.alphaTested = true;
+  f.textured = true;
+  f.diffuse = true;
+  return f.withNeeds(WP_NEEDS_MICROFACET | WP_NEEDS_LAYERS | WP_NEEDS_TRANSMISSION | WP_NEEDS_METAL);
 }
 
 GpuScene packScene(const Scene& scene) {

@@ -30,13 +30,16 @@ struct SceneFeatures {
   bool textured = false;      // a material has a texture (texture.h)
   bool transmissive = false;  // a material has transmission: glass (material.h)
   bool microfacet = false;    // a material is glTF's BRDF, not ideal diffuse or unlit (bsdf.h)
+  bool metallic = false;      // a material has metalness: glTF's metal lobe (material.h)
   bool diffuse = false;       // a material is ideal diffuse or unlit (materialShadeNeeds 0)
   // Both shade classes (layout.h): materials that need glTF's BRDF and materials that need
   // none of it. Vulkan then shades each class with a pipeline of its own (shade.comp).
   bool hasBothShadeClasses() const { return diffuse && microfacet; }
-  // These features with the material ones (layers, transmission, microfacet) as `needs`
+  // These features with the material ones (layers, transmission, metal, microfacet) as `needs`
   // says (WP_NEEDS_* bits, materialShadeNeeds).
   SceneFeatures withNeeds(uint32_t needs) const;
+  // Every feature: the stages as C++ and OpenCL run them.
+  static SceneFeatures everything();
   bool operator==(const SceneFeatures&) const = default;
 };
 

@@ -211,9 +211,9 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   // The constants in constant_id order: the features of prelude_glsl.h, then shade.comp's
   // class and split (the other stages have no constants past the features, which Vulkan
   // allows).
-  const std::array<VkBool32, 7> constants = {features.alphaTested,  features.layered,    features.textured,
-                                             features.transmissive, features.microfacet, shadeClass,
-                                             splitShade_};
+  const std::array<VkBool32, 8> constants = {features.alphaTested,  features.layered,    features.textured,
+                                             features.transmissive, features.microfacet, features.metallic,
+                                             shadeClass,            splitShade_};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
@@ -235,8 +235,9 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   // have two (still or with motion blur) and stages specialized to the scene's features and
   // shade classes when those change: a scene like the last costs nothing.
   const bool motion = scene.moving();
-  const SceneFeatures features = scene.features();
-  const bool split = splitShadeByMaterial_ && features.hasBothShadeClasses();
+  const SceneFeatures sceneFeatures = scene.features();
+  const SceneFeatures features = specializeToScene_ ? sceneFeatures : SceneFeatures::everything();
+  const bool split = splitShadeByMaterial_ && sceneFeatures.hasBothShadeClasses();
   const bool respecialize = !(features == sceneFeatures_) || split != splitShade_;
   sceneFeatures_ = features;
   splitShade_ = split;

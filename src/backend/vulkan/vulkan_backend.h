@@ -43,6 +43,10 @@ public:
   // default, or one for the whole scene: the images are the same, only the time differs
   // (docs/performance.md).
   void splitShadeByMaterial(bool split) { splitShadeByMaterial_ = split; }
+  // Whether the next loadScene specializes the stages to the scene's features (prelude_glsl.h),
+  // as it does by default, or builds them with every feature, as C++ and OpenCL run them: the
+  // images are the same, only the time differs.
+  void specializeToScene(bool specialize) { specializeToScene_ = specialize; }
 
 private:
   // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
@@ -71,6 +75,7 @@ private:
   bool splitShade_ = false;
   VkPipeline microfacetShadePipeline_ = VK_NULL_HANDLE;
   bool splitShadeByMaterial_ = true;
+  bool specializeToScene_ = true;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet descriptorSet_ = VK_NULL_HANDLE;
   VkCommandBuffer commandBuffer_ = VK_NULL_HANDLE;
