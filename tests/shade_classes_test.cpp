@@ -65,6 +65,24 @@ TEST(SceneFeatures, MetallicOnlyWhereAUsedMaterialHasMetalness) {
   EXPECT_FALSE(box.features().metallic);
 }
 
+TEST(SceneFeatures, EmissiveWhereAUsedMaterialEmits) {
+  GpuScene box = packedAsset("cornell-box.gltf");
+  EXPECT_TRUE(box.features().emissive) << "the box's lamp";
+  for (gpu::GpuMaterial& m : box.materials) m.emission = glm::vec4(0.0f, 0.0f, 0.0f, m.emission.w);
+  EXPECT_FALSE(box.features().emissive) << "no emission left";
+  // An unlit material glows with its colour (integrator.h).
+  for (gpu::GpuMaterial& m : box.materials) m.info.x = WP_MATERIAL_UNLIT;
+  EXPECT_TRUE(box.features().emissive);
+}
+
+TEST(SceneFeatures, SkySampledWhereNextEventEstimationSamplesTheSky) {
+  GpuScene spheres = packedAsset("sky-spheres.gltf");
+  ASSERT_GT(spheres.sky.selectionProbability, 0.0f) << "sky-spheres.gltf is lit by its sky";
+  EXPECT_TRUE(spheres.features().skySampled);
+  spheres.sky.selectionProbability = 0.0f;
+  EXPECT_FALSE(spheres.features().skySampled);
+}
+
 // How renderVulkan builds the stages and the scene.
 struct VulkanBuild {
   bool split = true;            // shade split by class where the scene has both
@@ -118,19 +136,38 @@ TEST(ShadeClasses, SplitShadeMakesTheSameImageBitForBit) {
 }
 
 TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
-  // Bit for bit too: a feature's constant may only remove code that the scene's materials
-  // never run (a metal lobe of weight 0, glass of transmission 0). The project's box turns
-  // every feature off (its materials are ideal diffuse), materials.gltf keeps most, and
-  // lamps.gltf without metalness keeps glTF's BRDF without its metal lobe.
+  // Bit for bit too: a feature's constant may only remove code that the scene never runs (a
+  // metal lobe of weight 0, glass of transmission 0, the sky's sampling at probability 0,
+  // emission nothing has). The project's box turns the material features off (its materials
+  // are ideal diffuse), materials.gltf keeps most, sky-spheres.gltf samples its sky, and
+  // lamps.gltf without metalness keeps glTF's BRDF without its metal lobe; between them each
+  // of the constants below is on in one case and off in another.
   struct Case {
     const char* asset;
     bool withoutMetal;
   };
-  for (const Case c : {Case{"cornell-box.gltf", false}, Case{"materials.gltf", false}, Case{"lamps.gltf", true}}) {
+  std::vector<SceneFeatures> covered;
+  for (const Case c : {Case{"cornell-box.gltf", false}, Case{"materials.gltf", false}, Case{"sky-spheres.gltf", false},
+                       Case{"lamps.gltf", true}}) {
     SCOPED_TRACE(c.asset);
+    GpuScene scene = packedAsset(c.asset);
+    if (c.withoutMetal) {
+      for (gpu::GpuMaterial& m : scene.materials) m.surface.x = 0.0f;
+    }
+    covered.push_back(scene.features());
     expectSameBitForBit(renderVulkan(c.asset, {.specialize = true, .withoutMetal = c.withoutMetal}),
                         renderVulkan(c.asset, {.specialize = false, .withoutMetal = c.withoutMetal}));
   }
+  auto both = [&](bool SceneFeatures::*feature) {
+    bool on = false;
+    bool off = false;
+    for (const SceneFeatures& f : covered) (f.*feature ? on : off) = true;
+    return on && off;
+  };
+  EXPECT_TRUE(both(&SceneFeatures::microfacet));
+  EXPECT_TRUE(both(&SceneFeatures::metallic));
+  EXPECT_TRUE(both(&SceneFeatures::emissive));
+  EXPECT_TRUE(both(&SceneFeatures::skySampled));
 }
 
 }  // namespace

@@ -393,6 +393,13 @@ WP_FN uint materialShadeNeeds(GpuMaterial m) {
   return needs;
 }
 
+// Whether a surface of material m emits light: an emission above 0 (the emissive factor; a
+// texture only scales it) or unlit (integrator.h: its colour is emission). The triangle
+// lights are the emitting triangles (packScene).
+WP_FN bool materialEmits(GpuMaterial m) {
+  return materialKind(m) == WP_MATERIAL_UNLIT || max(m.emission.x, max(m.emission.y, m.emission.z)) > 0.0f;
+}
+
 // Shade classes (Vulkan, shade.comp): in a scene with both, the misses and the hits on
 // materials that need nothing (materialShadeNeeds: ideal diffuse, unlit) are shaded by a
 // pipeline without glTF's BRDF, which defers the other hits to the deferred shade queue

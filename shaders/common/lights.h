@@ -233,7 +233,7 @@ WP_FN float triangleSolidAngle(vec3 a, vec3 b, vec3 c) {
 // light shows its back.
 WP_FN float solidAngleWeight(GpuLight light, vec3 position, float time) {
   uint kind = lightKind(light);
-  if (kind != WP_LIGHT_TRIANGLE) {
+  if (!WP_SCENE_EMISSIVE || kind != WP_LIGHT_TRIANGLE) {
     LightSample s = samplePunctualLight(light, position, time);
     return s.pdf > 0.0f ? luminance(s.radiance) : 0.0f;
   }
@@ -307,7 +307,8 @@ WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection
     return noLightSample();
   }
   GpuLight light = WP_LOAD(lights, choice.index);
-  LightSample s = lightKind(light) == WP_LIGHT_TRIANGLE
+  // (WP_SCENE_EMISSIVE false: no triangle lights, and Vulkan compiles their sampling away.)
+  LightSample s = WP_SCENE_EMISSIVE && lightKind(light) == WP_LIGHT_TRIANGLE
                       ? sampleLightTriangle(WP_BUFFERS_ARG light, position, make_vec2(u.y, u.z))
                       : samplePunctualLight(light, position, time);
   s.pdf *= choice.probability;

@@ -48,6 +48,8 @@ typedef uint4 uvec4;
 #define WP_SCENE_TRANSMISSIVE true
 #define WP_SCENE_MICROFACET true
 #define WP_SCENE_METALLIC true
+#define WP_SCENE_EMISSIVE true
+#define WP_SCENE_SKY_SAMPLED true
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

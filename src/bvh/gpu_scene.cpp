@@ -497,6 +497,7 @@ SceneFeatures GpuScene::features() const {
   f.alphaTested = std::any_of(triangles.begin(), triangles.end(),
                               [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
   f.textured = !textures.empty();
+  f.skySampled = sky.selectionProbability > 0.0f;
   // Only the materials some surface has: a material nothing uses would only cost code.
   std::vector<bool> used(materials.size(), false);
   auto use = [&](uint32_t material) {
@@ -513,6 +514,7 @@ SceneFeatures GpuScene::features() const {
     const uint32_t materialNeeds = gpu::materialShadeNeeds(materials[m]);
     needs |= materialNeeds;
     f.diffuse = f.diffuse || materialNeeds == 0;
+    f.emissive = f.emissive || gpu::materialEmits(materials[m]);
   }
   return f.withNeeds(needs);
 }
@@ -531,6 +533,8 @@ SceneFeatures SceneFeatures::everything() {
   f.alphaTested = true;
   f.textured = true;
   f.diffuse = true;
+  f.emissive = true;
+  f.skySampled = true;
   return f.withNeeds(WP_NEEDS_MICROFACET | WP_NEEDS_LAYERS | WP_NEEDS_TRANSMISSION | WP_NEEDS_METAL);
 }
 

@@ -31,6 +31,8 @@ struct SceneFeatures {
   bool transmissive = false;  // a material has transmission: glass (material.h)
   bool microfacet = false;    // a material is glTF's BRDF, not ideal diffuse or unlit (bsdf.h)
   bool metallic = false;      // a material has metalness: glTF's metal lobe (material.h)
+  bool emissive = false;      // a material emits (materialEmits): emission at hits, triangle lights
+  bool skySampled = false;    // next event estimation samples the sky (sky.selectionProbability > 0)
   bool diffuse = false;       // a material is ideal diffuse or unlit (materialShadeNeeds 0)
   // Both shade classes (layout.h): materials that need glTF's BRDF and materials that need
   // none of it. Vulkan then shades each class with a pipeline of its own (shade.comp).

@@ -211,9 +211,9 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   // The constants in constant_id order: the features of prelude_glsl.h, then shade.comp's
   // class and split (the other stages have no constants past the features, which Vulkan
   // allows).
-  const std::array<VkBool32, 8> constants = {features.alphaTested,  features.layered,    features.textured,
-                                             features.transmissive, features.microfacet, features.metallic,
-                                             shadeClass,            splitShade_};
+  const std::array<VkBool32, 10> constants = {
+      features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
+      features.metallic,    features.emissive, features.skySampled, shadeClass,            splitShade_};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
