@@ -88,6 +88,7 @@ struct VulkanBuild {
   bool split = true;            // shade split by class where the scene has both
   bool specialize = true;       // the stages specialized to the scene's features
   bool withoutMetal = false;    // every material's metalness 0 (GpuMaterial.surface.x)
+  bool solidAngle = false;      // lights selected by solid angle, not by power
 };
 
 // The accumulation of `asset` (small, a few samples, every bounce) rendered on Vulkan under
@@ -108,6 +109,7 @@ Accumulation renderVulkan(const char* asset, VulkanBuild build) {
   settings.samplesPerPixel = 4;
   settings.maxBounces = 8;
   settings.maxPaths = 64 * 48 * 2;  // two passes
+  settings.lightSelection = build.solidAngle ? LightSelection::SolidAngle : LightSelection::Power;
   WavefrontRenderer renderer(*backend, scene, gpuScene, settings);
   renderer.render(nullptr);
   checkValidation(choice);
@@ -141,22 +143,26 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // emission nothing has). The project's box turns the material features off (its materials
   // are ideal diffuse), materials.gltf keeps most, sky-spheres.gltf samples its sky, and
   // lamps.gltf without metalness keeps glTF's BRDF without its metal lobe; between them each
-  // of the constants below is on in one case and off in another.
+  // of the constants below is on in one case and off in another. The light selection is the
+  // render's: power everywhere but in the last case, which selects lamps.gltf's lights by
+  // solid angle (its constant on).
   struct Case {
     const char* asset;
     bool withoutMetal;
+    bool solidAngle = false;
   };
   std::vector<SceneFeatures> covered;
   for (const Case c : {Case{"cornell-box.gltf", false}, Case{"materials.gltf", false}, Case{"sky-spheres.gltf", false},
-                       Case{"lamps.gltf", true}}) {
+                       Case{"lamps.gltf", true}, Case{"lamps.gltf", false, true}}) {
     SCOPED_TRACE(c.asset);
     GpuScene scene = packedAsset(c.asset);
     if (c.withoutMetal) {
       for (gpu::GpuMaterial& m : scene.materials) m.surface.x = 0.0f;
     }
     covered.push_back(scene.features());
-    expectSameBitForBit(renderVulkan(c.asset, {.specialize = true, .withoutMetal = c.withoutMetal}),
-                        renderVulkan(c.asset, {.specialize = false, .withoutMetal = c.withoutMetal}));
+    expectSameBitForBit(
+        renderVulkan(c.asset, {.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}),
+        renderVulkan(c.asset, {.specialize = false, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}));
   }
   auto both = [&](bool SceneFeatures::*feature) {
     bool on = false;

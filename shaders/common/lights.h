@@ -258,7 +258,7 @@ WP_FN float solidAngleWeightSum(WP_BUFFERS uint lightCount, vec3 position, float
 // `selection` (WP_LIGHT_SELECTION_*).
 WP_FN float lightSelectionProbability(WP_BUFFERS uint lightCount, uint selection, GpuLight light,
                                       vec3 position, float time) {
-  if (selection != WP_LIGHT_SELECTION_SOLID_ANGLE) {
+  if (!WP_RENDER_SOLID_ANGLE_SELECTION || selection != WP_LIGHT_SELECTION_SOLID_ANGLE) {
     return lightPowerProbability(light);
   }
   float sum = solidAngleWeightSum(WP_BUFFERS_ARG lightCount, position, time);
@@ -297,7 +297,9 @@ WP_FN LightChoice selectLightBySolidAngle(WP_BUFFERS uint lightCount, vec3 posit
 WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection, vec3 position,
                                       float time, vec3 u) {
   LightChoice choice;
-  if (selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {
+  // (WP_RENDER_SOLID_ANGLE_SELECTION false: selection is power, and Vulkan compiles the
+  // solid-angle loops away.)
+  if (WP_RENDER_SOLID_ANGLE_SELECTION && selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {
     choice = selectLightBySolidAngle(WP_BUFFERS_ARG lightCount, position, time, u.x);
   } else {
     choice.index = selectLight(WP_BUFFERS_ARG lightCount, u.x);

@@ -40,6 +40,7 @@ inline uint asUint(float f) { return std::bit_cast<uint>(f); }
 #define WP_SCENE_METALLIC true
 #define WP_SCENE_EMISSIVE true
 #define WP_SCENE_SKY_SAMPLED true
+#define WP_RENDER_SOLID_ANGLE_SELECTION true
 #define WP_STRUCT(name) struct name {
 #define WP_STRUCT_END(name) };
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

@@ -49,6 +49,8 @@ layout(constant_id = 4) const bool WP_SCENE_MICROFACET = true;    // bsdf.h
 layout(constant_id = 5) const bool WP_SCENE_METALLIC = true;      // material.h
 layout(constant_id = 6) const bool WP_SCENE_EMISSIVE = true;      // integrator.h, lights.h
 layout(constant_id = 7) const bool WP_SCENE_SKY_SAMPLED = true;   // integrator.h
+// And what the render uses (RenderParams): its light selection by solid angle (lights.h).
+layout(constant_id = 8) const bool WP_RENDER_SOLID_ANGLE_SELECTION = true;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

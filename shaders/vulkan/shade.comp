@@ -18,8 +18,8 @@
 
 // This pipeline's shade class, and whether the scene has the other (the diffuse class then
 // defers the hits it does not shade).
-layout(constant_id = 8) const uint WP_SHADE_CLASS = WP_SHADE_CLASS_DIFFUSE;
-layout(constant_id = 9) const bool WP_SHADE_SPLIT = false;
+layout(constant_id = 9) const uint WP_SHADE_CLASS = WP_SHADE_CLASS_DIFFUSE;
+layout(constant_id = 10) const bool WP_SHADE_SPLIT = false;
 
 // The entry of `queue` for this invocation, if `wants`. One atomic per subgroup instead of
 // one per invocation: atomics serialise lanes, on GPUs and even more on lavapipe, where each

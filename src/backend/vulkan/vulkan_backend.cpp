@@ -208,12 +208,13 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
-  // The constants in constant_id order: the features of prelude_glsl.h, then shade.comp's
-  // class and split (the other stages have no constants past the features, which Vulkan
+  // The constants in constant_id order: the features of prelude_glsl.h and the render's light
+  // selection, then shade.comp's class and split (the other stages have no constants past the features, which Vulkan
   // allows).
-  const std::array<VkBool32, 10> constants = {
+  const std::array<VkBool32, 11> constants = {
       features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
-      features.metallic,    features.emissive, features.skySampled, shadeClass,            splitShade_};
+      features.metallic,    features.emissive, features.skySampled, solidAngleSelection_,  shadeClass,
+      splitShade_};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
@@ -229,18 +230,7 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   return pipeline;
 }
 
-void VulkanBackend::loadScene(const GpuScene& scene) {
-  vkDeviceWaitIdle(context_->device);
-  // Build the stages for the first scene; then swap in the other build of the stages that
-  // have two (still or with motion blur) and stages specialized to the scene's features and
-  // shade classes when those change: a scene like the last costs nothing.
-  const bool motion = scene.moving();
-  const SceneFeatures sceneFeatures = scene.features();
-  const SceneFeatures features = specializeToScene_ ? sceneFeatures : SceneFeatures::everything();
-  const bool split = splitShadeByMaterial_ && sceneFeatures.hasBothShadeClasses();
-  const bool respecialize = !(features == sceneFeatures_) || split != splitShade_;
-  sceneFeatures_ = features;
-  splitShade_ = split;
+void VulkanBackend::buildPipelines(bool motion, bool respecialize) {
   // The pipelines to build, each into its slot: the shade stages first, the longest to
   // compile, so that the rest fill the other cores meanwhile.
   struct PipelineBuild {
@@ -250,11 +240,12 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
     uint32_t shadeClass;
   };
   std::vector<PipelineBuild> builds;
+  const bool split = splitShade_;
   if (respecialize || motion != motion_ || (split && microfacetShadePipeline_ == VK_NULL_HANDLE)) {
     vkDestroyPipeline(context_->device, microfacetShadePipeline_, nullptr);
     microfacetShadePipeline_ = VK_NULL_HANDLE;
     if (split) {
-      builds.push_back({&microfacetShadePipeline_, spirvFor(Kernel::Shade, motion), features,
+      builds.push_back({&microfacetShadePipeline_, spirvFor(Kernel::Shade, motion), sceneFeatures_,
                         WP_SHADE_CLASS_MICROFACET});
     }
   }
@@ -265,7 +256,7 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
       pipelines_[k] = VK_NULL_HANDLE;  // so that a failure below leaves nothing to destroy twice
       // Split, shade is first the diffuse class's, which needs nothing of the materials' code.
       const bool diffuseShade = split && Kernel(k) == Kernel::Shade;
-      builds.push_back({&pipelines_[k], code, diffuseShade ? features.withNeeds(0) : features,
+      builds.push_back({&pipelines_[k], code, diffuseShade ? sceneFeatures_.withNeeds(0) : sceneFeatures_,
                         WP_SHADE_CLASS_DIFFUSE});
     }
   }
@@ -280,6 +271,21 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
     *builds[i].slot = createPipeline(builds[i].code, builds[i].features, builds[i].shadeClass);
   });
   motion_ = motion;
+}
+
+void VulkanBackend::loadScene(const GpuScene& scene) {
+  vkDeviceWaitIdle(context_->device);
+  // Build the stages for the first scene; then swap in the other build of the stages that
+  // have two (still or with motion blur) and stages specialized to the scene's features and
+  // shade classes when those change: a scene like the last costs nothing.
+  const bool motion = scene.moving();
+  const SceneFeatures sceneFeatures = scene.features();
+  const SceneFeatures features = specializeToScene_ ? sceneFeatures : SceneFeatures::everything();
+  const bool split = splitShadeByMaterial_ && sceneFeatures.hasBothShadeClasses();
+  const bool respecialize = !(features == sceneFeatures_) || split != splitShade_;
+  sceneFeatures_ = features;
+  splitShade_ = split;
+  buildPipelines(motion, respecialize);
   const auto arrays = sceneArrays(scene);
   const DeviceLimits& limits = context_->limits;
   const uint64_t bytes = checkSceneFits(limits, arrays);
@@ -313,6 +319,13 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   checkPathStateFits(context_->limits, 2ull * maxPaths * sizeof(gpu::PathRay), params.pixelCount,
                      pathStateBytes(maxPaths) + accumulationBytes);
   vkDeviceWaitIdle(context_->device);
+  // The stages compile the solid-angle light selection only for a render that uses it (or
+  // with every feature): lavapipe runs a loop's body once even where no lane enters it.
+  const bool solidAngle = params.lightSelection == WP_LIGHT_SELECTION_SOLID_ANGLE || !specializeToScene_;
+  if (solidAngle != solidAngleSelection_) {
+    solidAngleSelection_ = solidAngle;
+    buildPipelines(motion_, true);
+  }
   params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memcpy(params_.mapped(), &params, sizeof(params));
 

@@ -43,9 +43,9 @@ public:
   // default, or one for the whole scene: the images are the same, only the time differs
   // (docs/performance.md).
   void splitShadeByMaterial(bool split) { splitShadeByMaterial_ = split; }
-  // Whether the next loadScene specializes the stages to the scene's features (prelude_glsl.h),
-  // as it does by default, or builds them with every feature, as C++ and OpenCL run them: the
-  // images are the same, only the time differs.
+  // Whether the next loadScene and configure specialize the stages to the scene's features and
+  // the render's light selection (prelude_glsl.h), as they do by default, or build them with
+  // every feature, as C++ and OpenCL run them: the images are the same, only the time differs.
   void specializeToScene(bool specialize) { specializeToScene_ = specialize; }
 
 private:
@@ -56,6 +56,9 @@ private:
   // `features` (prelude_glsl.h) and, for shade, to shade class `shadeClass` (WP_SHADE_CLASS_*)
   // of a split shade or not (splitShade_).
   VkPipeline createPipeline(SpirvCode code, const SceneFeatures& features, uint32_t shadeClass);
+  // (Re)builds the stages for `motion` (WP_MOTION_BLUR or not) specialized to sceneFeatures_,
+  // splitShade_ and solidAngleSelection_: those whose build changed, or all with respecialize.
+  void buildPipelines(bool motion, bool respecialize);
   // Records a dispatch of `pipeline`, after a barrier on what the dispatches before wrote.
   void record(VkPipeline pipeline, const gpu::PassConstants& constants, const DispatchSize& size);
   void writeDescriptors();
@@ -70,6 +73,7 @@ private:
   std::array<VkPipeline, kKernelCount> pipelines_{};  // none until the first loadScene
   bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
   SceneFeatures sceneFeatures_;  // and specialized to these
+  bool solidAngleSelection_ = false;  // and to the render's light selection (configure)
   // Whether shade is split by shade class: pipelines_[Shade] then shades the diffuse class
   // and microfacetShadePipeline_ the hits it deferred.
   bool splitShade_ = false;
