@@ -19,6 +19,11 @@ namespace {
 
 GpuScene packedAsset(const char* name) { return packScene(loadScene(sourceDirectory() / "assets" / name)); }
 
+// Every material of `scene` without metalness (GpuMaterial.surface.x 0).
+void removeMetalness(GpuScene& scene) {
+  for (gpu::GpuMaterial& m : scene.materials) m.surface.x = 0.0f;
+}
+
 TEST(ShadeClasses, AreThoseOfTheMaterialsTheSurfacesUse) {
   // A Lambertian floor under glTF metals and glass: both classes.
   EXPECT_TRUE(packedAsset("materials.gltf").features().hasBothShadeClasses());
@@ -45,10 +50,8 @@ TEST(SceneFeatures, MetallicOnlyWhereAUsedMaterialHasMetalness) {
   // glTF's default metalness is 1: materials.gltf's metals and its lamp's default both count.
   EXPECT_TRUE(packedAsset("materials.gltf").features().metallic);
   GpuScene box = packedAsset("cornell-box.gltf");
-  for (gpu::GpuMaterial& m : box.materials) {
-    m.info.x = WP_MATERIAL_GLTF;
-    m.surface.x = 0.0f;
-  }
+  for (gpu::GpuMaterial& m : box.materials) m.info.x = WP_MATERIAL_GLTF;
+  removeMetalness(box);
   SceneFeatures f = box.features();
   EXPECT_TRUE(f.microfacet);
   EXPECT_FALSE(f.metallic) << "no material has metalness";
@@ -87,7 +90,7 @@ TEST(SceneFeatures, SkySampledWhereNextEventEstimationSamplesTheSky) {
 struct VulkanBuild {
   bool split = true;            // shade split by class where the scene has both
   bool specialize = true;       // the stages specialized to the scene's features
-  bool withoutMetal = false;    // every material's metalness 0 (GpuMaterial.surface.x)
+  bool withoutMetal = false;    // every material's metalness 0 (removeMetalness)
   bool solidAngle = false;      // lights selected by solid angle, not by power
 };
 
@@ -100,9 +103,7 @@ Accumulation renderVulkan(const char* asset, VulkanBuild build) {
   dynamic_cast<VulkanBackend&>(*backend).specializeToScene(build.specialize);
   const Scene scene = loadScene(sourceDirectory() / "assets" / asset);
   GpuScene gpuScene = packScene(scene);
-  if (build.withoutMetal) {
-    for (gpu::GpuMaterial& m : gpuScene.materials) m.surface.x = 0.0f;
-  }
+  if (build.withoutMetal) removeMetalness(gpuScene);
   RenderSettings settings;
   settings.width = 64;
   settings.height = 48;
@@ -156,9 +157,7 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
                        Case{"lamps.gltf", true}, Case{"lamps.gltf", false, true}}) {
     SCOPED_TRACE(c.asset);
     GpuScene scene = packedAsset(c.asset);
-    if (c.withoutMetal) {
-      for (gpu::GpuMaterial& m : scene.materials) m.surface.x = 0.0f;
-    }
+    if (c.withoutMetal) removeMetalness(scene);
     covered.push_back(scene.features());
     expectSameBitForBit(
         renderVulkan(c.asset, {.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}),
