@@ -548,6 +548,58 @@ TEST(Traversal, SingleTriangleMeshIsOneNodeWithThreeEmptySlots) {
   EXPECT_EQ(h.primitive, 0u);
 }
 
+// Triangles at x = 2^-i, each half the size of the one before: the SAH peels one off per
+// level, so the tree is as deep as the build allows and its stacks as full as they get.
+Triangles exponentialRow(int count) {
+  Triangles t;
+  for (int i = 0; i < count; ++i) {
+    float x = std::ldexp(1.0f, -i);
+    t.insert(t.end(), {glm::vec3(x, 0.0f, 0.0f), glm::vec3(1.5f * x, 1.0f, 0.0f), glm::vec3(x, 0.0f, 1.0f)});
+  }
+  return t;
+}
+
+TEST(Traversal, StacksHoldNoMoreThanTheirTreesNeed) {
+  // traversalStackEntries is what Vulkan sizes the stacks in workgroup memory by: a ray that
+  // pushed past it would overwrite another invocation's entries. The C++ traversal counts the
+  // most entries each level held (prelude_cpp.h) over the random scenes' rays, and over a
+  // scene of deep trees: an exponential row (as deep as the build allows) in 40 instances.
+  std::vector<wp::GpuScene> scenes;
+  for (uint32_t seed = 20; seed < 23; ++seed) {
+    Rng rng(seed);
+    scenes.push_back(wp::packScene(randomScene(rng)));
+  }
+  Rng rng(23);
+  wp::Scene deep;
+  deep.materials.resize(1);
+  deep.meshes.push_back(meshOf(exponentialRow(48), 0));
+  deep.meshes.push_back(meshOf(randomSoup(rng, 3000), 0));
+  for (int i = 0; i < 40; ++i) deep.instances.push_back({uint32_t(i % 2), randomTransform(rng, 3.0f)});
+  scenes.push_back(wp::packScene(deep));
+  for (const wp::GpuScene& g : scenes) {
+    const wp::TraversalStackNeeds needs = g.stackNeeds();
+    wp::gpu::deepestStacks = {};
+    for (int r = 0; r < 20000; ++r) {  // half of them at a triangle, so that they reach leaves
+      glm::vec3 o = rng.inBox(g.boundsMin, g.boundsMax);
+      glm::vec3 target = r % 2 ? pointOnSomeTriangle(g, rng) : rng.inBox(g.boundsMin, g.boundsMax);
+      if (target == o) continue;
+      traceClosest(g, o, glm::normalize(target - o), WP_FLT_MAX);
+      traceAny(g, o, glm::normalize(target - o), WP_FLT_MAX);
+    }
+    EXPECT_LE(wp::gpu::deepestStacks.topLevelStack, needs.topLevel);
+    EXPECT_LE(wp::gpu::deepestStacks.bottomLevelStack, needs.bottomLevel);
+    // And the rays went deep enough for that to mean something (the most is for a ray that
+    // enters every child of every node on a path: no ray need do that).
+    EXPECT_GE(3 * wp::gpu::deepestStacks.bottomLevelStack, needs.bottomLevel);
+    EXPECT_GE(3 * wp::gpu::deepestStacks.topLevelStack, needs.topLevel);
+    std::printf("stacks: top level %u of %u, bottom level %u of %u entries\n", wp::gpu::deepestStacks.topLevelStack,
+                needs.topLevel, wp::gpu::deepestStacks.bottomLevelStack, needs.bottomLevel);
+  }
+  // The deep scene needs more than any random one, and the invocations' own arrays hold it.
+  EXPECT_GT(scenes.back().stackNeeds().bottomLevel, scenes.front().stackNeeds().bottomLevel);
+  EXPECT_LE(scenes.back().stackNeeds().bottomLevel, WP_LEVEL_STACK_SIZE);
+}
+
 // ---- 4-wide nodes -----------------------------------------------------------------------
 
 // Boxes along the ray's axis at known entry distances, in shuffled slots: the reached ones
@@ -610,6 +662,29 @@ TEST(WideBvh, ChildrenAreOrderedByEntryDistance) {
 
 // The collapse keeps every leaf once, fills nodes while interior children are left to open,
 // and has at most half the binary tree's interior nodes.
+TEST(WideBvh, StackEntriesAreTheMostAPathLeavesWaitingPlusOne) {
+  // A root of three leaves and node A; A of two leaves and nodes B and C; B of two leaves, C
+  // of three. Under the root 3 entries wait, under A 3 + 3, under B 6 + 1 and under C 6 + 2:
+  // 8 at most, and one for a leaf pushed back.
+  auto nodeOf = [](std::vector<std::pair<uint32_t, uint32_t>> children) {  // (index, count)
+    wp::gpu::BvhNode n = wp::emptyWideNode();
+    for (uint32_t k = 0; k < children.size(); ++k) {
+      wp::setWideChild(n, k, Aabb{glm::vec3(0.0f), glm::vec3(1.0f)}, children[k].first, children[k].second);
+    }
+    return n;
+  };
+  std::vector<wp::gpu::BvhNode> nodes = {
+      nodeOf({{0, 1}, {1, 1}, {1, 0}, {2, 1}}),  // 0: root
+      nodeOf({{3, 1}, {2, 0}, {4, 1}, {3, 0}}),  // 1: A
+      nodeOf({{5, 1}, {6, 1}}),                  // 2: B
+      nodeOf({{7, 1}, {8, 1}, {9, 1}}),          // 3: C
+  };
+  EXPECT_EQ(wp::traversalStackEntries(nodes, 0), 9u);
+  EXPECT_EQ(wp::traversalStackEntries(nodes, 1), 6u);  // A alone: 3 under A, 5 under C
+  EXPECT_EQ(wp::traversalStackEntries(nodes, 2), 2u);
+  EXPECT_EQ(wp::traversalStackEntries({wp::emptyWideNode()}, 0), 1u);
+}
+
 TEST(WideBvh, CollapseKeepsEveryLeafOnceAndFillsNodes) {
   Rng rng(7);
   for (const Triangles& t : {gridMesh(30), clustered(rng, 2000), randomSoup(rng, 3000)}) {

@@ -5,7 +5,9 @@
 // the code a feature's constant compiles away is code the scene never runs.
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <random>
 
 #include "app/backend_factory.h"
 #include "backend/vulkan/vulkan_backend.h"
@@ -92,16 +94,17 @@ struct VulkanBuild {
   bool specialize = true;       // the stages specialized to the scene's features
   bool withoutMetal = false;    // every material's metalness 0 (removeMetalness)
   bool solidAngle = false;      // lights selected by solid angle, not by power
+  StackPlacement* placedStacks = nullptr;  // where the stages kept their stacks, if given
 };
 
-// The accumulation of `asset` (small, a few samples, every bounce) rendered on Vulkan under
+// The accumulation of `scene` (small, a few samples, every bounce) rendered on Vulkan under
 // the validation layer, built as `build` says.
-Accumulation renderVulkan(const char* asset, VulkanBuild build) {
+Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
   const BackendChoice choice{"vulkan", -1, true, "readback"};
   std::unique_ptr<Backend> backend = createBackend(choice);
-  dynamic_cast<VulkanBackend&>(*backend).splitShadeByMaterial(build.split);
-  dynamic_cast<VulkanBackend&>(*backend).specializeToScene(build.specialize);
-  const Scene scene = loadScene(sourceDirectory() / "assets" / asset);
+  auto& vulkan = dynamic_cast<VulkanBackend&>(*backend);
+  vulkan.splitShadeByMaterial(build.split);
+  vulkan.specializeToScene(build.specialize);
   GpuScene gpuScene = packScene(scene);
   if (build.withoutMetal) removeMetalness(gpuScene);
   RenderSettings settings;
@@ -114,7 +117,12 @@ Accumulation renderVulkan(const char* asset, VulkanBuild build) {
   WavefrontRenderer renderer(*backend, scene, gpuScene, settings);
   renderer.render(nullptr);
   checkValidation(choice);
+  if (build.placedStacks) *build.placedStacks = vulkan.stackPlacement();
   return backend->readAccumulation();
+}
+
+Accumulation renderVulkan(const char* asset, VulkanBuild build) {
+  return renderVulkan(loadScene(sourceDirectory() / "assets" / asset), build);
 }
 
 // Every layer of `a` and `b` the same, bit for bit, and `a` not black.
@@ -173,6 +181,57 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   EXPECT_TRUE(both(&SceneFeatures::metallic));
   EXPECT_TRUE(both(&SceneFeatures::emissive));
   EXPECT_TRUE(both(&SceneFeatures::skySampled));
+}
+
+// A scene of deep trees under a lamp: a soup of 4000 random triangles, whose bottom level
+// needs several times the box's stack entries, in 30 random places (a top level of some
+// depth), and an emissive quad over them.
+Scene deepTreesScene() {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  auto point = [&] { return glm::vec3(unit(random), unit(random), unit(random)); };
+  Scene scene;
+  scene.materials.resize(2);
+  for (Material& m : scene.materials) m.bsdf = Material::Bsdf::Lambert;
+  scene.materials[1].emission = glm::vec3(8.0f);
+  scene.materials[1].doubleSided = true;
+  Mesh soup;
+  for (int i = 0; i < 4000; ++i) {
+    const glm::vec3 center = point();
+    for (int k = 0; k < 3; ++k) soup.positions.push_back(center + 0.05f * point());
+  }
+  Mesh lamp;
+  lamp.positions = {{-4, 6, -4}, {4, 6, -4}, {4, 6, 4}, {-4, 6, 4}};
+  lamp.indices = {0, 1, 2, 0, 2, 3};
+  lamp.materials = {1, 1};
+  for (uint32_t v = 0; v < soup.positions.size(); ++v) soup.indices.push_back(v);
+  soup.materials.assign(soup.triangleCount(), 0);
+  scene.meshes = {soup, lamp};
+  for (int i = 0; i < 30; ++i) {
+    const glm::mat4 place = glm::translate(glm::mat4(1.0f), 3.0f * point());
+    scene.instances.push_back({0, glm::rotate(place, 3.0f * unit(random), glm::normalize(point()))});
+  }
+  scene.instances.push_back({1, glm::mat4(1.0f)});
+  return scene;
+}
+
+TEST(TraversalStacks, InWorkgroupMemoryMakeTheSameImageBitForBit) {
+  // The stages specialized to the scene keep the stacks in workgroup memory, each invocation's
+  // entries beside the others' and sized to the scene's trees (GpuScene::stackNeeds); with
+  // every feature, in each invocation's own arrays, as C++ and OpenCL do. Bit for bit: the
+  // same pushes and pops in another memory. A stack sized too small would overwrite another
+  // invocation's entries, and the images would differ.
+  const Scene scene = deepTreesScene();
+  const TraversalStackNeeds needs = packScene(scene).stackNeeds();
+  EXPECT_GE(needs.bottomLevel, 3 * packedAsset("cornell-box.gltf").stackNeeds().bottomLevel);
+  EXPECT_GE(needs.topLevel, 10u);
+  StackPlacement inWorkgroup, ownArrays;
+  expectSameBitForBit(renderVulkan(scene, {.specialize = true, .placedStacks = &inWorkgroup}),
+                      renderVulkan(scene, {.specialize = false, .placedStacks = &ownArrays}));
+  EXPECT_TRUE(inWorkgroup.inWorkgroupMemory);
+  EXPECT_GE(inWorkgroup.topLevelEntries, needs.topLevel);
+  EXPECT_GE(inWorkgroup.bottomLevelEntries, needs.bottomLevel);
+  EXPECT_FALSE(ownArrays.inWorkgroupMemory);
 }
 
 }  // namespace

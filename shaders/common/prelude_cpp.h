@@ -2,6 +2,7 @@
 #ifndef WP_PRELUDE_CPP_H
 #define WP_PRELUDE_CPP_H
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -16,7 +17,15 @@ inline float fabs(float x) { return std::fabs(x); }
 inline vec3 fabs(vec3 v) { return glm::abs(v); }
 inline float asFloat(uint u) { return std::bit_cast<float>(u); }
 inline uint asUint(float f) { return std::bit_cast<uint>(f); }
+// The most entries each level's traversal stack has held on this thread (traverse.h), which
+// the tests compare with what traversalStackEntries says the trees need.
+struct DeepestStacks {
+  uint topLevelStack = 0;
+  uint bottomLevelStack = 0;
+};
+inline thread_local DeepestStacks deepestStacks;
 }  // namespace wp::gpu
+#define WP_NOTE_STACK_ENTRY(stack, i) (deepestStacks.stack = std::max(deepestStacks.stack, (i) + 1u))
 
 // The host reference places moving instances at every time (motion.h, instanceAt).
 #define WP_MOTION_BLUR 1

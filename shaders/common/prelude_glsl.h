@@ -10,6 +10,8 @@
 #endif
 // Work-items are SIMD lanes (lavapipe's, and a GPU's), never threads of their own.
 #define WP_WORK_ITEMS_ARE_THREADS 0
+// The traversal's stacks may live in workgroup memory (traverse.h).
+#define WP_GLSL 1
 // Sine and cosine of a sample warp's angle (prelude_cl.h): GLSL's own precision suffices.
 #define WP_WARP_SIN(angle) sin(angle)
 #define WP_WARP_COS(angle) cos(angle)
@@ -51,6 +53,12 @@ layout(constant_id = 6) const bool WP_SCENE_EMISSIVE = true;      // integrator.
 layout(constant_id = 7) const bool WP_SCENE_SKY_SAMPLED = true;   // integrator.h
 // And what the render uses (RenderParams): its light selection by solid angle (lights.h).
 layout(constant_id = 8) const bool WP_RENDER_SOLID_ANGLE_SELECTION = true;
+// (9 and 10 are shade.comp's.) Where the traversal keeps its stacks (traverse.h): in workgroup
+// memory, each level's of the entries the scene's trees need (GpuScene::stackNeeds), or in
+// each invocation's own arrays, the size any tree may need.
+layout(constant_id = 11) const bool WP_STACKS_IN_WORKGROUP_MEMORY = false;
+layout(constant_id = 12) const uint WP_TOP_LEVEL_STACK_ENTRIES = 1u;
+layout(constant_id = 13) const uint WP_BOTTOM_LEVEL_STACK_ENTRIES = 1u;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

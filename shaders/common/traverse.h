@@ -11,8 +11,9 @@
 
 // Each level is built no deeper than WP_BVH_MAX_DEPTH binary levels, so its 4-wide nodes
 // (each at least one binary level below its parent) are no deeper either. A node visit pushes
-// at most three children, and a bottom-level lane that already holds a postponed leaf keeps
-// two more entries for later, so a stack of this size serves either level.
+// at most three children, and a bottom-level lane that already holds a postponed leaf pushes
+// one more back, so a stack of this size serves either level of any tree
+// (traversalStackEntries, wide_nodes.h, gives what a given tree needs).
 #define WP_BVH_MAX_DEPTH 32u
 #define WP_LEVEL_STACK_SIZE ((WP_BVH_WIDTH - 1u) * WP_BVH_MAX_DEPTH + 2u)
 // Bottom-level leaves hold at most this many triangles (the packer builds them so): a leaf's
@@ -27,6 +28,38 @@
 #define WP_MAX_ALPHA_LAYERS 64u
 
 WP_BEGIN
+
+// Each level's stack: an array of the invocation's own, declared where the level is walked
+// and read and written through WP_STACK_READ and WP_STACK_WRITE. Vulkan keeps it in workgroup
+// memory instead where the scene's stacks fit there (WP_STACKS_IN_WORKGROUP_MEMORY), entry i
+// of every invocation of the workgroup side by side. lavapipe stores to an invocation's own
+// array at an index that differs between lanes, inside a loop, lane by lane: it loads the
+// slot, selects the lane's value or the one it loaded by the lane's mask, and stores that
+// back. On a CPU that guesses such a load independent of the stores just before it (AMD's
+// Zen 4) a wrong guess re-executes the pipeline, and the lanes' data decides whether the
+// guess is wrong: the pushes took half of lavapipe's extend there. Workgroup memory is stored
+// to with a branch per lane, no load: extend and connect half as long on Zen 4.
+#define WP_STACK_DECLARE(stack) uint stack[WP_LEVEL_STACK_SIZE];
+#ifdef WP_GLSL
+shared uint topLevelStackInWorkgroup[WP_TOP_LEVEL_STACK_ENTRIES * WP_WORKGROUP_SIZE];
+shared uint bottomLevelStackInWorkgroup[WP_BOTTOM_LEVEL_STACK_ENTRIES * WP_WORKGROUP_SIZE];
+#define WP_STACK_IN_WORKGROUP(stack, i) stack##InWorkgroup[(i) * WP_WORKGROUP_SIZE + gl_LocalInvocationIndex]
+#define WP_STACK_READ(stack, i) (WP_STACKS_IN_WORKGROUP_MEMORY ? WP_STACK_IN_WORKGROUP(stack, i) : stack[i])
+#define WP_STACK_WRITE(stack, i, value)        \
+  if (WP_STACKS_IN_WORKGROUP_MEMORY) {         \
+    WP_STACK_IN_WORKGROUP(stack, i) = (value); \
+  } else {                                     \
+    stack[i] = (value);                        \
+  }
+#else
+#ifndef WP_NOTE_STACK_ENTRY
+#define WP_NOTE_STACK_ENTRY(stack, i)  // C++ keeps count (prelude_cpp.h)
+#endif
+#define WP_STACK_READ(stack, i) stack[i]
+#define WP_STACK_WRITE(stack, i, value) \
+  stack[i] = (value);                   \
+  WP_NOTE_STACK_ENTRY(stack, i);
+#endif
 
 WP_STRUCT(Hit)
   float t;         // distance along the ray (tMax for a miss)
@@ -125,13 +158,13 @@ WP_FN_INLINED ChildHits intersectChildren(BvhNode node, vec3 origin, vec3 invDir
 #define WP_PUSH_FAR_CHILDREN(stack, sp, hits)                        \
   {                                                                  \
     if ((hits).count > 3u) {                                         \
-      stack[(sp) + (hits).count - 4u] = (hits).nearestFirst.w;       \
+      WP_STACK_WRITE(stack, (sp) + (hits).count - 4u, (hits).nearestFirst.w) \
     }                                                                \
     if ((hits).count > 2u) {                                         \
-      stack[(sp) + (hits).count - 3u] = (hits).nearestFirst.z;       \
+      WP_STACK_WRITE(stack, (sp) + (hits).count - 3u, (hits).nearestFirst.z) \
     }                                                                \
     if ((hits).count > 1u) {                                         \
-      stack[(sp) + (hits).count - 2u] = (hits).nearestFirst.y;       \
+      WP_STACK_WRITE(stack, (sp) + (hits).count - 2u, (hits).nearestFirst.y) \
       (sp) += (hits).count - 1u;                                     \
     }                                                                \
   }
@@ -210,7 +243,7 @@ WP_FN_INLINED Hit intersectLeaf(WP_BUFFERS uint leaf, uint instance, vec3 o, vec
 // "while-while" with postponed leaves).
 WP_FN_INLINED Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, vec3 d, Hit hit, bool anyHit) {
   vec3 invDir = rayInverseDirection(d);
-  uint stack[WP_LEVEL_STACK_SIZE];
+  WP_STACK_DECLARE(bottomLevelStack)
   uint sp = 0u;
   uint node = root;         // next interior node to visit, WP_INVALID: none
   uint leaf = WP_INVALID;  // leaf entry waiting to be intersected
@@ -219,7 +252,7 @@ WP_FN_INLINED Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, 
       BvhNode n = WP_LOAD(nodes, node);
       prefetchChildren(WP_BUFFERS_ARG n);
       ChildHits b = intersectChildren(n, o, invDir, hit.t);
-      WP_PUSH_FAR_CHILDREN(stack, sp, b)
+      WP_PUSH_FAR_CHILDREN(bottomLevelStack, sp, b)
       node = WP_INVALID;
       if (b.count > 0u && entryCount(b.nearestFirst.x) == 0u) {
         node = b.nearestFirst.x;
@@ -228,12 +261,12 @@ WP_FN_INLINED Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, 
           leaf = b.nearestFirst.x;
         } else if (b.count > 0u) {
           // This lane already holds a leaf (it waits for the others): keep the new one.
-          stack[sp] = b.nearestFirst.x;
+          WP_STACK_WRITE(bottomLevelStack, sp, b.nearestFirst.x)
           ++sp;
         }
         if (sp > 0u) {
           --sp;
-          uint popped = stack[sp];
+          uint popped = WP_STACK_READ(bottomLevelStack, sp);
           if (entryCount(popped) == 0u) {
             node = popped;
           } else if (leaf == WP_INVALID) {
@@ -260,7 +293,7 @@ WP_FN_INLINED Hit traceBottomLevel(WP_BUFFERS uint root, uint instance, vec3 o, 
         break;
       }
       --sp;
-      uint popped = stack[sp];
+      uint popped = WP_STACK_READ(bottomLevelStack, sp);
       if (entryCount(popped) == 0u) {
         node = popped;
       } else {
@@ -314,19 +347,19 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
     return hit;
   }
   vec3 invDir = rayInverseDirection(direction);
-  uint stack[WP_LEVEL_STACK_SIZE];
+  WP_STACK_DECLARE(topLevelStack)
   uint sp = 0u;
   // WP_INVALID once the stack is empty: its count bits are not 0, so it ends the node loop.
   uint entry = packEntry(tlasRoot, 0u);
   for (;;) {
     while (entryCount(entry) == 0u) {
       ChildHits c = intersectChildren(WP_LOAD(nodes, entryIndex(entry)), origin, invDir, hit.t);
-      WP_PUSH_FAR_CHILDREN(stack, sp, c)
+      WP_PUSH_FAR_CHILDREN(topLevelStack, sp, c)
       if (c.count > 0u) {
         entry = c.nearestFirst.x;
       } else if (sp > 0u) {
         --sp;
-        entry = stack[sp];
+        entry = WP_STACK_READ(topLevelStack, sp);
       } else {
         entry = WP_INVALID;
       }
@@ -348,7 +381,7 @@ WP_FN Hit traceScene(WP_BUFFERS uint tlasRoot, uint planeCount, vec3 origin, vec
       break;
     }
     --sp;
-    entry = stack[sp];
+    entry = WP_STACK_READ(topLevelStack, sp);
   }
   return hit;
 }

@@ -76,8 +76,10 @@ void printTimings(const RenderStats& stats, const TimeOutsidePasses& outside, co
                 update->totalMs(), update->refitMs, update->refits, update->rebuilds, update->rebuildMs,
                 update->trianglesMs, update->tlasMs, update->lightsMs);
   } else {
-    std::printf("BVH: %zu triangles, built in %.1f ms, SAH cost %.2f\n", gpuScene.triangleCount,
-                gpuScene.bvhBuildSeconds * 1e3, gpuScene.sahCost);
+    const TraversalStackNeeds stacks = gpuScene.stackNeeds();
+    std::printf("BVH: %zu triangles, built in %.1f ms, SAH cost %.2f, stacks of %u (top level) and %u entries\n",
+                gpuScene.triangleCount, gpuScene.bvhBuildSeconds * 1e3, gpuScene.sahCost, stacks.topLevel,
+                stacks.bottomLevel);
   }
   std::printf("GPU time per stage over %u passes (ms):", stats.passes);
   for (int k = 0; k < kKernelCount; ++k) {

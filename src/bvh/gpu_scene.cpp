@@ -519,6 +519,16 @@ SceneFeatures GpuScene::features() const {
   return f.withNeeds(needs);
 }
 
+TraversalStackNeeds GpuScene::stackNeeds() const {
+  TraversalStackNeeds needs;
+  if (nodes.empty()) return needs;
+  needs.topLevel = traversalStackEntries(nodes, tlasRoot);
+  for (const GpuMeshRange& mesh : meshes) {
+    needs.bottomLevel = std::max(needs.bottomLevel, traversalStackEntries(nodes, mesh.rootNode));
+  }
+  return needs;
+}
+
 SceneFeatures SceneFeatures::withNeeds(uint32_t needs) const {
   SceneFeatures f = *this;
   f.microfacet = (needs & WP_NEEDS_MICROFACET) != 0;

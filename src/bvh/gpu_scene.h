@@ -45,6 +45,14 @@ struct SceneFeatures {
   bool operator==(const SceneFeatures&) const = default;
 };
 
+// The entries each level of the traversal's stack holds at most for a scene's trees
+// (traversalStackEntries): Vulkan sizes its stacks in workgroup memory by them.
+struct TraversalStackNeeds {
+  uint32_t topLevel = 0;
+  uint32_t bottomLevel = 0;  // the most of any mesh's
+  bool operator==(const TraversalStackNeeds&) const = default;
+};
+
 struct GpuScene {
   // Every bottom-level BVH (one per mesh, in mesh order) and then the top level, with
   // absolute child indices. Bottom-level leaves index `triangles`, top-level leaves `instances`.
@@ -65,6 +73,8 @@ struct GpuScene {
   // What the scene uses, read from its records (so any GpuScene, packed or built by hand,
   // gets the stages its data needs).
   SceneFeatures features() const;
+  // What the traversal's stacks hold at most for these trees, read from `nodes`.
+  TraversalStackNeeds stackNeeds() const;
   std::vector<gpu::GpuPlane> planes;
   std::vector<gpu::GpuMaterial> materials;
   // The light table: world-space emissive triangles (for each still mesh instance in

@@ -3,6 +3,7 @@
 // PoCL test the four boxes with one vec4 instruction per step (docs/performance.md).
 #include "bvh/wide_nodes.h"
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -132,6 +133,28 @@ uint32_t appendWideNodes(const Bvh& bvh, const WideLayout& layout, uint32_t prim
   std::vector<gpu::BvhNode> nodes = wideNodes(bvh, layout, primBase, root);
   out.insert(out.end(), nodes.begin(), nodes.end());
   return root;
+}
+
+uint32_t traversalStackEntries(const std::vector<gpu::BvhNode>& nodes, uint32_t root) {
+  struct Visit {
+    uint32_t node;
+    uint32_t below;  // entries the nodes above it leave on the stack
+  };
+  std::vector<Visit> pending{{root, 0}};
+  uint32_t most = 0;
+  while (!pending.empty()) {
+    const Visit visit = pending.back();
+    pending.pop_back();
+    const gpu::BvhNode& node = nodes.at(visit.node);
+    uint32_t used = 0;
+    for (uint32_t k = 0; k < kWidth; ++k) used += node.childIndex[k] != WP_INVALID;
+    const uint32_t waiting = visit.below + (used > 0 ? used - 1 : 0);
+    most = std::max(most, waiting);
+    for (uint32_t k = 0; k < kWidth; ++k) {
+      if (node.childIndex[k] != WP_INVALID && node.childCount[k] == 0) pending.push_back({node.childIndex[k], waiting});
+    }
+  }
+  return most + 1;
 }
 
 }  // namespace wp

@@ -37,6 +37,13 @@ std::vector<gpu::BvhNode> wideNodes(const Bvh& bvh, const WideLayout& layout, ui
 // wideNodes placed at the end of `out`; returns where its root now lies.
 uint32_t appendWideNodes(const Bvh& bvh, const WideLayout& layout, uint32_t primBase, std::vector<gpu::BvhNode>& out);
 
+// The most entries traverse.h's stack holds at once while a ray walks the tree whose root is
+// nodes[root] (either level): at every node on the way down, the children the ray reaches but
+// the nearest wait on the stack, so the most that any path from the root leaves there (each
+// node's used slots but one), and one more for the leaf that a bottom-level lane already
+// holding one pushes back. At most (WP_BVH_WIDTH - 1) * WP_BVH_MAX_DEPTH + 1.
+uint32_t traversalStackEntries(const std::vector<gpu::BvhNode>& nodes, uint32_t root);
+
 // A node whose four slots are empty.
 gpu::BvhNode emptyWideNode();
 

@@ -208,16 +208,16 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
-  // The constants in constant_id order: the features of prelude_glsl.h and the render's light
-  // selection, then shade.comp's class and split (the other stages have no constants past the features, which Vulkan
-  // allows).
-  const std::array<VkBool32, 11> constants = {
+  // The constants in constant_id order, each 32 bits (VkBool32 or uint): the features of
+  // prelude_glsl.h and the render's light selection, shade.comp's class and split, then the
+  // traversal's stacks (a stage without some of them ignores them, which Vulkan allows).
+  const std::array<uint32_t, 14> constants = {
       features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
       features.metallic,    features.emissive, features.skySampled, solidAngleSelection_,  shadeClass,
-      splitShade_};
+      splitShade_,          stacks_.inWorkgroupMemory, stacks_.topLevelEntries, stacks_.bottomLevelEntries};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
-    entries[id] = {id, uint32_t(id * sizeof(VkBool32)), sizeof(VkBool32)};
+    entries[id] = {id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)};
   }
   const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(), sizeof(constants),
                                            constants.data()};
@@ -282,8 +282,13 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   const SceneFeatures sceneFeatures = scene.features();
   const SceneFeatures features = specializeToScene_ ? sceneFeatures : SceneFeatures::everything();
   const bool split = splitShadeByMaterial_ && sceneFeatures.hasBothShadeClasses();
-  const bool respecialize = !(features == sceneFeatures_) || split != splitShade_;
+  const StackPlacement stacks =
+      specializeToScene_
+          ? placeStacks(scene.stackNeeds(), context_->properties.limits.maxComputeSharedMemorySize, stacks_)
+          : StackPlacement{};
+  const bool respecialize = !(features == sceneFeatures_) || split != splitShade_ || !(stacks == stacks_);
   sceneFeatures_ = features;
+  stacks_ = stacks;
   splitShade_ = split;
   buildPipelines(motion, respecialize);
   const auto arrays = sceneArrays(scene);

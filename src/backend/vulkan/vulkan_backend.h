@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "backend/vulkan/stack_placement.h"
 #include "backend/vulkan/vulkan_buffer.h"
 #include "backend/vulkan/vulkan_context.h"
 #include "bvh/gpu_scene.h"
@@ -43,10 +44,13 @@ public:
   // default, or one for the whole scene: the images are the same, only the time differs
   // (docs/performance.md).
   void splitShadeByMaterial(bool split) { splitShadeByMaterial_ = split; }
-  // Whether the next loadScene and configure specialize the stages to the scene's features and
-  // the render's light selection (prelude_glsl.h), as they do by default, or build them with
-  // every feature, as C++ and OpenCL run them: the images are the same, only the time differs.
+  // Whether the next loadScene and configure specialize the stages to the scene's features,
+  // its trees' stacks and the render's light selection (prelude_glsl.h), as they do by
+  // default, or build them with every feature and the stacks in each invocation's own arrays,
+  // as C++ and OpenCL run them: the images are the same, only the time differs.
   void specializeToScene(bool specialize) { specializeToScene_ = specialize; }
+  // Where the stages built for the last scene keep the traversal's stacks.
+  const StackPlacement& stackPlacement() const { return stacks_; }
 
 private:
   // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
@@ -57,7 +61,8 @@ private:
   // of a split shade or not (splitShade_).
   VkPipeline createPipeline(SpirvCode code, const SceneFeatures& features, uint32_t shadeClass);
   // (Re)builds the stages for `motion` (WP_MOTION_BLUR or not) specialized to sceneFeatures_,
-  // splitShade_ and solidAngleSelection_: those whose build changed, or all with respecialize.
+  // stacks_, splitShade_ and solidAngleSelection_: those whose build changed, or all with
+  // respecialize.
   void buildPipelines(bool motion, bool respecialize);
   // Records a dispatch of `pipeline`, after a barrier on what the dispatches before wrote.
   void record(VkPipeline pipeline, const gpu::PassConstants& constants, const DispatchSize& size);
@@ -73,6 +78,7 @@ private:
   std::array<VkPipeline, kKernelCount> pipelines_{};  // none until the first loadScene
   bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
   SceneFeatures sceneFeatures_;  // and specialized to these
+  StackPlacement stacks_;        // with the traversal's stacks here
   bool solidAngleSelection_ = false;  // and to the render's light selection (configure)
   // Whether shade is split by shade class: pipelines_[Shade] then shades the diffuse class
   // and microfacetShadePipeline_ the hits it deferred.
