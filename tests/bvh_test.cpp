@@ -340,12 +340,12 @@ TEST(Intersect, PlaneAndSlabs) {
 // ---- packed scenes: traversal against brute force ---------------------------------------
 
 Hit traceClosest(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
-  return wp::gpu::traceClosest(wp::sceneBuffers(g), g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax,
+  return wp::gpu::traceClosest(wp::sceneBuffers(g), g.topLevelEntry(), static_cast<uint32_t>(g.planes.size()), o, d, tMax,
                                0.0f);
 }
 
 bool traceAny(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
-  return wp::gpu::traceAny(wp::sceneBuffers(g), g.tlasRoot, static_cast<uint32_t>(g.planes.size()), o, d, tMax,
+  return wp::gpu::traceAny(wp::sceneBuffers(g), g.topLevelEntry(), static_cast<uint32_t>(g.planes.size()), o, d, tMax,
                            0.0f);
 }
 
@@ -511,6 +511,27 @@ TEST(Traversal, MatchesBruteForceOnRandomScenes) {
   EXPECT_GT(stats.triangleHits, stats.rays / 10);
   EXPECT_GT(stats.sphereHits, stats.rays / 100);
   EXPECT_GT(stats.planeHits, stats.rays / 100);
+}
+
+// A top level of one instance (placed off the origin, turned and scaled) is entered at the
+// instance's leaf (GpuScene::topLevelEntry), not its root node: the same hits.
+TEST(Traversal, MatchesBruteForceWhereTheTopLevelIsOneInstance) {
+  RayStats stats;
+  for (uint32_t seed = 20; seed < 22; ++seed) {
+    Rng rng(seed);
+    wp::Scene s;
+    s.materials.resize(2);
+    s.meshes.push_back(meshOf(clustered(rng, 400), 0));
+    s.instances.push_back({0, randomTransform(rng, 3.0f)});
+    s.planes.push_back({glm::vec3(0, 1, 0), -9.0f, 1});
+    wp::GpuScene g = wp::packScene(s);
+    ASSERT_EQ(g.topLevelEntry(), wp::gpu::packEntry(0u, 1u)) << "the instance's leaf";
+    compareRays(g, rng, 20000, stats);
+  }
+  EXPECT_EQ(stats.failures, 0);
+  EXPECT_GT(stats.triangleHits, stats.rays / 10);
+  EXPECT_GT(stats.planeHits, stats.rays / 100);
+  EXPECT_GT(stats.rays - stats.hits, stats.rays / 10) << "misses too";
 }
 
 TEST(Traversal, EmptyAndPlaneOnlyScenes) {

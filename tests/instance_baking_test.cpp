@@ -89,7 +89,7 @@ Mesh randomTangentMesh(std::mt19937& rng, int triangles) {
 // The normal-mapping frame at a hit, as normalMapped (integrator.h) orthogonalizes it.
 // The closest hit of a ray in `g` (no planes, at shutter time 0).
 gpu::Hit traceClosest(const GpuScene& g, glm::vec3 origin, glm::vec3 direction) {
-  return gpu::traceClosest(sceneBuffers(g), g.tlasRoot, 0u, origin, direction, WP_FLT_MAX, 0.0f);
+  return gpu::traceClosest(sceneBuffers(g), g.topLevelEntry(), 0u, origin, direction, WP_FLT_MAX, 0.0f);
 }
 
 struct TangentFrame {

@@ -104,7 +104,7 @@ Mesh soup(std::mt19937& rng, int triangles, uint32_t material) {
 
 // Closest-hit distance of a ray at shutter time `time`, or -1 for a miss.
 float hitDistance(const GpuScene& g, glm::vec3 o, glm::vec3 d, float time) {
-  gpu::Hit h = gpu::traceClosest(sceneBuffers(g), g.tlasRoot, uint32_t(g.planes.size()), o, d, WP_FLT_MAX, time);
+  gpu::Hit h = gpu::traceClosest(sceneBuffers(g), g.topLevelEntry(), uint32_t(g.planes.size()), o, d, WP_FLT_MAX, time);
   return h.instance == WP_INVALID ? -1.0f : h.t;
 }
 
@@ -151,7 +151,7 @@ TEST(MotionTraversal, SeesTheSceneWhereItIsAtTheRaysTime) {
       ++rays;
       hits += b >= 0.0f;
       mismatches += (a < 0.0f) != (b < 0.0f) || std::abs(a - b) > 1e-4f * std::max(1.0f, b);
-      bool anyA = gpu::traceAny(sceneBuffers(g), g.tlasRoot, 0u, o, d, WP_FLT_MAX, time);
+      bool anyA = gpu::traceAny(sceneBuffers(g), g.topLevelEntry(), 0u, o, d, WP_FLT_MAX, time);
       mismatches += anyA != (b >= 0.0f);
     }
   }

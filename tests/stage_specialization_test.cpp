@@ -12,6 +12,7 @@
 #include "app/backend_factory.h"
 #include "backend/vulkan/vulkan_backend.h"
 #include "bvh/gpu_scene.h"
+#include "bvh/instance_baking.h"
 #include "render/wavefront.h"
 #include "scene/gltf_loader.h"
 #include "support/run_wavepath.h"
@@ -88,6 +89,28 @@ TEST(SceneFeatures, SkySampledWhereNextEventEstimationSamplesTheSky) {
   EXPECT_FALSE(spheres.features().skySampled);
 }
 
+TEST(SceneFeatures, InstancedWhereTheTopLevelsRootIsANode) {
+  // The project's box as the renderer packs it: every mesh placed once, baked into one
+  // instance, whose leaf the traversal starts from.
+  GpuScene box = packScene(bakeSingleUseMeshes(loadScene(sourceDirectory() / "assets" / "cornell-box.gltf")));
+  ASSERT_EQ(box.placedInstances, 1u);
+  EXPECT_EQ(box.topLevelEntry(), gpu::packEntry(0u, 1u));
+  EXPECT_FALSE(box.features().instanced);
+  // Unbaked, its eight meshes are eight instances under a root node.
+  EXPECT_TRUE(packedAsset("cornell-box.gltf").features().instanced);
+  // Spheres are instances of their own: several, under a root node.
+  GpuScene spheres = packedAsset("sky-spheres.gltf");
+  ASSERT_GT(spheres.placedInstances, 1u);
+  EXPECT_EQ(spheres.topLevelEntry(), gpu::packEntry(spheres.tlasRoot, 0u));
+  EXPECT_TRUE(spheres.features().instanced);
+  // No instance at all: an empty root node.
+  Scene nothing;
+  nothing.materials.resize(1);
+  GpuScene empty = packScene(nothing);
+  EXPECT_EQ(empty.topLevelEntry(), gpu::packEntry(empty.tlasRoot, 0u));
+  EXPECT_TRUE(empty.features().instanced);
+}
+
 // How renderVulkan builds the stages and the scene.
 struct VulkanBuild {
   bool split = true;            // shade split by class where the scene has both
@@ -149,27 +172,31 @@ TEST(ShadeClasses, SplitShadeMakesTheSameImageBitForBit) {
 TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // Bit for bit too: a feature's constant may only remove code that the scene never runs (a
   // metal lobe of weight 0, glass of transmission 0, the sky's sampling at probability 0,
-  // emission nothing has). The project's box turns the material features off (its materials
-  // are ideal diffuse), materials.gltf keeps most, sky-spheres.gltf samples its sky, and
-  // lamps.gltf without metalness keeps glTF's BRDF without its metal lobe; between them each
-  // of the constants below is on in one case and off in another. The light selection is the
+  // emission nothing has, the walk of a top level that holds one instance). The project's
+  // box turns the material features off (its materials are ideal diffuse) and its top level
+  // holds one instance, materials.gltf keeps most, sky-spheres.gltf samples its sky among
+  // several instances, and lamps.gltf without metalness keeps glTF's BRDF without its metal
+  // lobe; between them each of the constants below is on in one case and off in another. The light selection is the
   // render's: power everywhere but in the last case, which selects lamps.gltf's lights by
   // solid angle (its constant on).
   struct Case {
     const char* asset;
     bool withoutMetal;
     bool solidAngle = false;
+    bool baked = false;  // its meshes placed once baked into one instance, as the renderer does
   };
   std::vector<SceneFeatures> covered;
-  for (const Case c : {Case{"cornell-box.gltf", false}, Case{"materials.gltf", false}, Case{"sky-spheres.gltf", false},
-                       Case{"lamps.gltf", true}, Case{"lamps.gltf", false, true}}) {
+  for (const Case c : {Case{"cornell-box.gltf", false, false, true}, Case{"materials.gltf", false},
+                       Case{"sky-spheres.gltf", false}, Case{"lamps.gltf", true}, Case{"lamps.gltf", false, true}}) {
     SCOPED_TRACE(c.asset);
-    GpuScene scene = packedAsset(c.asset);
-    if (c.withoutMetal) removeMetalness(scene);
-    covered.push_back(scene.features());
+    Scene scene = loadScene(sourceDirectory() / "assets" / c.asset);
+    if (c.baked) scene = bakeSingleUseMeshes(scene);
+    GpuScene packed = packScene(scene);
+    if (c.withoutMetal) removeMetalness(packed);
+    covered.push_back(packed.features());
     expectSameBitForBit(
-        renderVulkan(c.asset, {.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}),
-        renderVulkan(c.asset, {.specialize = false, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}));
+        renderVulkan(scene, {.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}),
+        renderVulkan(scene, {.specialize = false, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}));
   }
   auto both = [&](bool SceneFeatures::*feature) {
     bool on = false;
@@ -181,6 +208,7 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   EXPECT_TRUE(both(&SceneFeatures::metallic));
   EXPECT_TRUE(both(&SceneFeatures::emissive));
   EXPECT_TRUE(both(&SceneFeatures::skySampled));
+  EXPECT_TRUE(both(&SceneFeatures::instanced));
 }
 
 // A scene of deep trees under a lamp: a soup of 4000 random triangles, whose bottom level

@@ -53,7 +53,7 @@ std::vector<wp::gpu::Hit> traceAll(const wp::gpu::DeviceBuffers& buffers, const 
                                    const std::vector<Ray>& rays) {
   std::vector<wp::gpu::Hit> hits(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) {
-    hits[i] = wp::gpu::traceClosest(buffers, scene.tlasRoot, uint32_t(scene.planes.size()), rays[i].origin,
+    hits[i] = wp::gpu::traceClosest(buffers, scene.topLevelEntry(), uint32_t(scene.planes.size()), rays[i].origin,
                                     rays[i].direction, WP_FLT_MAX, 0.0f);
   }
   return hits;

@@ -33,6 +33,14 @@ WP_BEGIN
 
 #define WP_INVALID 0xffffffffu
 
+// A traversal stack entry (traverse.h), also the top level's root in RenderParams: a node
+// (count 0) or a leaf of `count` primitives at `index`, the count in the bits above the index.
+#define WP_ENTRY_COUNT_SHIFT 29u
+#define WP_ENTRY_INDEX_MASK 0x1fffffffu
+WP_FN uint packEntry(uint index, uint count) { return index | (count << WP_ENTRY_COUNT_SHIFT); }
+WP_FN uint entryIndex(uint entry) { return entry & WP_ENTRY_INDEX_MASK; }
+WP_FN uint entryCount(uint entry) { return entry >> WP_ENTRY_COUNT_SHIFT; }
+
 // 4-wide BVH node, 128 bytes: the bounds of up to four children, one vec4 per axis bound with
 // a child in each component (x: child 0 ... w: child 3), so one vec4 operation tests an axis
 // for all four children (SIMD on CPUs, where PoCL runs a work-item as scalar code), then the
@@ -471,7 +479,7 @@ WP_STRUCT(RenderParams)
   uint rouletteStart;  // the first bounce at which Russian roulette may end a path
   uint lightCount;     // lights in the light table (triangles and punctual)
   uint planeCount;
-  uint tlasRoot;       // the top-level BVH's root node
+  uint topLevel;       // the top level's root as a stack entry (GpuScene::topLevelEntry)
   uint instanceCount;  // placed instances
   uint maxPaths;       // paths of a pass at most: the length of each queue
   uint bsdfFlags;      // WP_BSDF_*

@@ -59,6 +59,9 @@ layout(constant_id = 8) const bool WP_RENDER_SOLID_ANGLE_SELECTION = true;
 layout(constant_id = 11) const bool WP_STACKS_IN_WORKGROUP_MEMORY = false;
 layout(constant_id = 12) const uint WP_TOP_LEVEL_STACK_ENTRIES = 1u;
 layout(constant_id = 13) const uint WP_BOTTOM_LEVEL_STACK_ENTRIES = 1u;
+// Whether the top level's root is a node (GpuScene::topLevelEntry, traverse.h): false where it
+// is a single instance's leaf, which the traversal then enters without the walk's code.
+layout(constant_id = 14) const bool WP_SCENE_INSTANCED = true;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

@@ -47,7 +47,7 @@ WP_FN_INLINED PathRay cameraPathRay(RenderParams params, PassConstants pc, uint 
 
 // The closest hit of `ray`, as shade reads it.
 WP_FN HitRecord extendRay(WP_BUFFERS RenderParams params, PathRay ray) {
-  Hit h = traceClosest(WP_BUFFERS_ARG params.tlasRoot, params.planeCount, rayOrigin(ray), rayDirection(ray),
+  Hit h = traceClosest(WP_BUFFERS_ARG params.topLevel, params.planeCount, rayOrigin(ray), rayDirection(ray),
                        WP_FLT_MAX, rayTime(ray));
   return makeHitRecord(h.t, h.instance, h.primitive);
 }
@@ -62,7 +62,7 @@ WP_FN_INLINED ShadeResult shadePath(WP_BUFFERS RenderParams params, PathRay ray,
 
 // Whether nothing blocks the shadow ray before its light sample.
 WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
-  return !traceAny(WP_BUFFERS_ARG params.tlasRoot, params.planeCount, shadowRayOrigin(s), shadowRayDirection(s),
+  return !traceAny(WP_BUFFERS_ARG params.topLevel, params.planeCount, shadowRayOrigin(s), shadowRayDirection(s),
                    shadowRayLength(s), shadowRayTime(s));
 }
 

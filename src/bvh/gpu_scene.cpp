@@ -498,6 +498,7 @@ SceneFeatures GpuScene::features() const {
                               [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
   f.textured = !textures.empty();
   f.skySampled = sky.selectionProbability > 0.0f;
+  f.instanced = gpu::entryCount(topLevelEntry()) == 0;
   // Only the materials some surface has: a material nothing uses would only cost code.
   std::vector<bool> used(materials.size(), false);
   auto use = [&](uint32_t material) {
@@ -545,6 +546,7 @@ SceneFeatures SceneFeatures::everything() {
   f.diffuse = true;
   f.emissive = true;
   f.skySampled = true;
+  f.instanced = true;
   return f.withNeeds(WP_NEEDS_MICROFACET | WP_NEEDS_LAYERS | WP_NEEDS_TRANSMISSION | WP_NEEDS_METAL);
 }
 

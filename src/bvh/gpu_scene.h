@@ -34,6 +34,10 @@ struct SceneFeatures {
   bool emissive = false;      // a material emits (materialEmits): emission at hits, triangle lights
   bool skySampled = false;    // next event estimation samples the sky (sky.selectionProbability > 0)
   bool diffuse = false;       // a material is ideal diffuse or unlit (materialShadeNeeds 0)
+  // The top level's root is a node, not the leaf of a single instance (GpuScene::topLevelEntry,
+  // traverse.h): most scenes without instancing hold one instance, every mesh placed once
+  // baked into world space (instance_baking.h).
+  bool instanced = false;
   // Both shade classes (layout.h): materials that need glTF's BRDF and materials that need
   // none of it. Vulkan then shades each class with a pipeline of its own (shade.comp).
   bool hasBothShadeClasses() const { return diffuse && microfacet; }
@@ -89,7 +93,12 @@ struct GpuScene {
   std::vector<float> skyConditional;
   gpu::GpuEnvironment sky{};
   std::vector<GpuMeshRange> meshes;  // one per scene mesh
-  uint32_t tlasRoot = 0;
+  uint32_t tlasRoot = 0;  // the top level's root node
+  // The top level's root as the traversal starts from it (traverse.h, traceScene): the root
+  // node's stack entry, or, where the top level holds one instance, that instance's leaf.
+  uint32_t topLevelEntry() const {
+    return placedInstances == 1 ? gpu::packEntry(0u, 1u) : gpu::packEntry(tlasRoot, 0u);
+  }
   glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world bounds of the instances (planes are
                                                // unbounded); all 0 without instances
   double bvhBuildSeconds = 0.0;  // wall time of all bottom- and top-level builds

@@ -34,7 +34,7 @@ gpu::ThinLens makeLens(const Camera& camera, uint32_t width, uint32_t height) {
 }
 
 float autofocusDistance(const Camera& camera, const GpuScene& scene) {
-  gpu::Hit hit = gpu::traceClosest(sceneBuffers(scene), scene.tlasRoot, uint32_t(scene.planes.size()),
+  gpu::Hit hit = gpu::traceClosest(sceneBuffers(scene), scene.topLevelEntry(), uint32_t(scene.planes.size()),
                                    camera.position, camera.forward, WP_FLT_MAX, 0.0f);
   return hit.instance == WP_INVALID ? 10.0f : hit.t;
 }

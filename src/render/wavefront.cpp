@@ -39,7 +39,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.rouletteStart = settings.russianRouletteStart;
   p.lightCount = uint32_t(gpuScene.lights.size());
   p.planeCount = uint32_t(gpuScene.planes.size());
-  p.tlasRoot = gpuScene.tlasRoot;
+  p.topLevel = gpuScene.topLevelEntry();
   p.instanceCount = gpuScene.placedInstances;
   uint64_t totalPaths = uint64_t(p.pixelCount) * settings.samplesInRange();
   p.maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
