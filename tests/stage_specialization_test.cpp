@@ -89,6 +89,14 @@ TEST(SceneFeatures, SkySampledWhereNextEventEstimationSamplesTheSky) {
   EXPECT_FALSE(spheres.features().skySampled);
 }
 
+TEST(SceneFeatures, PlanesWhereTheSceneHasPlanes) {
+  EXPECT_TRUE(packedAsset("sky-spheres.gltf").features().planes);
+  GpuScene box = packedAsset("cornell-box.gltf");
+  EXPECT_FALSE(box.features().planes);
+  box.planes.push_back(gpu::GpuPlane{});
+  EXPECT_TRUE(box.features().planes);
+}
+
 TEST(SceneFeatures, InstancedWhereTheTopLevelsRootIsANode) {
   // The project's box as the renderer packs it: every mesh placed once, baked into one
   // instance, whose leaf the traversal starts from.
@@ -172,10 +180,11 @@ TEST(ShadeClasses, SplitShadeMakesTheSameImageBitForBit) {
 TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // Bit for bit too: a feature's constant may only remove code that the scene never runs (a
   // metal lobe of weight 0, glass of transmission 0, the sky's sampling at probability 0,
-  // emission nothing has, the walk of a top level that holds one instance). The project's
-  // box turns the material features off (its materials are ideal diffuse) and its top level
-  // holds one instance, materials.gltf keeps most, sky-spheres.gltf samples its sky among
-  // several instances, and lamps.gltf without metalness keeps glTF's BRDF without its metal
+  // emission nothing has, the walk of a top level that holds one instance, the planes' loop
+  // of a scene without planes). The project's box turns the material features off (its
+  // materials are ideal diffuse), its top level holds one instance and it has no planes,
+  // materials.gltf keeps most, sky-spheres.gltf samples its sky among several instances and
+  // planes, and lamps.gltf without metalness keeps glTF's BRDF without its metal
   // lobe; between them each of the constants below is on in one case and off in another. The light selection is the
   // render's: power everywhere but in the last case, which selects lamps.gltf's lights by
   // solid angle (its constant on).
@@ -209,6 +218,7 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   EXPECT_TRUE(both(&SceneFeatures::emissive));
   EXPECT_TRUE(both(&SceneFeatures::skySampled));
   EXPECT_TRUE(both(&SceneFeatures::instanced));
+  EXPECT_TRUE(both(&SceneFeatures::planes));
 }
 
 // A scene of deep trees under a lamp: a soup of 4000 random triangles, whose bottom level

@@ -341,10 +341,14 @@ WP_FN Hit traceScene(WP_BUFFERS uint topLevel, uint planeCount, vec3 origin, vec
   hit.instance = WP_INVALID;
   hit.primitive = WP_INVALID;
   hit.alphaTested = false;
-  // Planes first: a near plane shortens every box test that follows.
-  hit = intersectPlanes(WP_BUFFERS_ARG planeCount, origin, direction, hit, anyHit);
-  if (anyHit && hit.instance != WP_INVALID) {
-    return hit;
+  // Planes first: a near plane shortens every box test that follows. (Vulkan compiles the
+  // loop out of a scene without planes, WP_SCENE_PLANES: on lavapipe its body, a plane's fetch
+  // and test, ran once for every ray.)
+  if (WP_SCENE_PLANES) {
+    hit = intersectPlanes(WP_BUFFERS_ARG planeCount, origin, direction, hit, anyHit);
+    if (anyHit && hit.instance != WP_INVALID) {
+      return hit;
+    }
   }
   if (!WP_SCENE_INSTANCED) {
     return intersectInstance(WP_BUFFERS_ARG entryIndex(topLevel), origin, direction, time, hit, anyHit);

@@ -499,6 +499,7 @@ SceneFeatures GpuScene::features() const {
   f.textured = !textures.empty();
   f.skySampled = sky.selectionProbability > 0.0f;
   f.instanced = gpu::entryCount(topLevelEntry()) == 0;
+  f.planes = !planes.empty();
   // Only the materials some surface has: a material nothing uses would only cost code.
   std::vector<bool> used(materials.size(), false);
   auto use = [&](uint32_t material) {
@@ -547,6 +548,7 @@ SceneFeatures SceneFeatures::everything() {
   f.emissive = true;
   f.skySampled = true;
   f.instanced = true;
+  f.planes = true;
   return f.withNeeds(WP_NEEDS_MICROFACET | WP_NEEDS_LAYERS | WP_NEEDS_TRANSMISSION | WP_NEEDS_METAL);
 }
 
