@@ -194,7 +194,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   double rays = double(stats.extensionRays + stats.shadowRays);
   std::printf("%s: %s%ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
-              "(%.1f M extension + %.1f M shadow rays) on %s\n",
+              "(%.3f M extension + %.3f M shadow rays) on %s\n",
               output.c_str(), partText(o.settings).c_str(), o.settings.width, o.settings.height,
               o.settings.samplesPerPixel, stats.seconds, wall, double(stats.samples) / stats.seconds * 1e-6,
               rays / stats.seconds * 1e-6, double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6,
