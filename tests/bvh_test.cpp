@@ -340,8 +340,8 @@ TEST(Intersect, PlaneAndSlabs) {
 // ---- packed scenes: traversal against brute force ---------------------------------------
 
 Hit traceClosest(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {
-  return wp::gpu::traceClosest(wp::sceneBuffers(g), g.topLevelEntry(), static_cast<uint32_t>(g.planes.size()), o, d, tMax,
-                               0.0f);
+  return wp::gpu::traceClosest(wp::sceneBuffers(g), g.topLevelEntry(), static_cast<uint32_t>(g.planes.size()), o, d,
+                               tMax, 0.0f);
 }
 
 bool traceAny(const wp::GpuScene& g, glm::vec3 o, glm::vec3 d, float tMax) {

@@ -23,8 +23,8 @@ constexpr float kBackToTheWall = 0.8f;     // how far towards the wall behind th
 
 // The distance to the first surface along the ray, or infinity.
 float freeDistance(const GpuScene& s, glm::vec3 origin, glm::vec3 direction) {
-  const gpu::Hit hit = gpu::traceClosest(sceneBuffers(s), s.topLevelEntry(), uint32_t(s.planes.size()), origin, direction,
-                                         WP_FLT_MAX, 0.0f);
+  const gpu::Hit hit = gpu::traceClosest(sceneBuffers(s), s.topLevelEntry(), uint32_t(s.planes.size()), origin,
+                                         direction, WP_FLT_MAX, 0.0f);
   return hit.instance == WP_INVALID ? std::numeric_limits<float>::infinity() : hit.t;
 }
 
@@ -47,8 +47,8 @@ bool lightVisible(const GpuScene& s, glm::vec3 origin, const gpu::GpuLight& ligh
       distance = 0.999f * glm::length(direction);
   }
   if (!(glm::dot(direction, direction) > 0.0f)) return true;
-  return !gpu::traceAny(sceneBuffers(s), s.topLevelEntry(), uint32_t(s.planes.size()), origin, glm::normalize(direction),
-                        distance, 0.0f);
+  return !gpu::traceAny(sceneBuffers(s), s.topLevelEntry(), uint32_t(s.planes.size()), origin,
+                        glm::normalize(direction), distance, 0.0f);
 }
 
 bool anyLightVisible(const GpuScene& s, glm::vec3 origin) {
