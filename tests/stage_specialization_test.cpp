@@ -20,7 +20,8 @@
 namespace wp::test {
 namespace {
 
-GpuScene packedAsset(const char* name) { return packScene(loadScene(sourceDirectory() / "assets" / name)); }
+Scene assetScene(const char* name) { return loadScene(sourceDirectory() / "assets" / name); }
+GpuScene packedAsset(const char* name) { return packScene(assetScene(name)); }
 
 // Every material of `scene` without metalness (GpuMaterial.surface.x 0).
 void removeMetalness(GpuScene& scene) {
@@ -100,7 +101,7 @@ TEST(SceneFeatures, PlanesWhereTheSceneHasPlanes) {
 TEST(SceneFeatures, InstancedWhereTheTopLevelsRootIsANode) {
   // The project's box as the renderer packs it: every mesh placed once, baked into one
   // instance, whose leaf the traversal starts from.
-  GpuScene box = packScene(bakeSingleUseMeshes(loadScene(sourceDirectory() / "assets" / "cornell-box.gltf")));
+  GpuScene box = packScene(bakeSingleUseMeshes(assetScene("cornell-box.gltf")));
   ASSERT_EQ(box.placedInstances, 1u);
   EXPECT_EQ(box.topLevelEntry(), gpu::packEntry(0u, 1u));
   EXPECT_FALSE(box.features().instanced);
@@ -153,7 +154,7 @@ Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
 }
 
 Accumulation renderVulkan(const char* asset, VulkanBuild build) {
-  return renderVulkan(loadScene(sourceDirectory() / "assets" / asset), build);
+  return renderVulkan(assetScene(asset), build);
 }
 
 // Every layer of `a` and `b` the same, bit for bit, and `a` not black.
@@ -184,10 +185,10 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // of a scene without planes). The project's box turns the material features off (its
   // materials are ideal diffuse), its top level holds one instance and it has no planes,
   // materials.gltf keeps most, sky-spheres.gltf samples its sky among several instances and
-  // planes, and lamps.gltf without metalness keeps glTF's BRDF without its metal
-  // lobe; between them each of the constants below is on in one case and off in another. The light selection is the
-  // render's: power everywhere but in the last case, which selects lamps.gltf's lights by
-  // solid angle (its constant on).
+  // planes, and lamps.gltf without metalness keeps glTF's BRDF without its metal lobe; between
+  // them each of the constants below is on in one case and off in another. The light
+  // selection is the render's: power everywhere but in the last case, which selects
+  // lamps.gltf's lights by solid angle (its constant on).
   struct Case {
     const char* asset;
     bool withoutMetal;
@@ -198,7 +199,7 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   for (const Case c : {Case{"cornell-box.gltf", false, false, true}, Case{"materials.gltf", false},
                        Case{"sky-spheres.gltf", false}, Case{"lamps.gltf", true}, Case{"lamps.gltf", false, true}}) {
     SCOPED_TRACE(c.asset);
-    Scene scene = loadScene(sourceDirectory() / "assets" / c.asset);
+    Scene scene = assetScene(c.asset);
     if (c.baked) scene = bakeSingleUseMeshes(scene);
     GpuScene packed = packScene(scene);
     if (c.withoutMetal) removeMetalness(packed);
