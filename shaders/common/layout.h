@@ -497,7 +497,10 @@ WP_STRUCT(RenderParams)
   float adaptiveThreshold;
   uint adaptiveMinSamples;
   uint samplerKind;  // WP_SAMPLER_* (sampler.h)
-  uint unused0;
+  // 1 where a ray can find emission: a surface emits, or the sky is not black. 0 (a scene lit
+  // by lamps alone under a black sky: most glTF files from Blender) spares the last vertex's
+  // ray, which could only find emission (sampleContinuation, integrator.h).
+  uint emissionHittable;
 WP_STRUCT_END(RenderParams)
 
 // One path waiting to be traced: 64 bytes.

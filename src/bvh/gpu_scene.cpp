@@ -521,6 +521,13 @@ SceneFeatures GpuScene::features() const {
   return f.withNeeds(needs);
 }
 
+bool GpuScene::emissionHittable() const {
+  auto emits = [](const gpu::GpuMaterial& m) { return gpu::materialEmits(m); };
+  auto bright = [](const glm::vec4& texel) { return texel.x > 0.0f || texel.y > 0.0f || texel.z > 0.0f; };
+  return std::any_of(materials.begin(), materials.end(), emits) ||
+         (sky.intensity > 0.0f && std::any_of(skyRadiance.begin(), skyRadiance.end(), bright));
+}
+
 TraversalStackNeeds GpuScene::stackNeeds() const {
   TraversalStackNeeds needs;
   if (nodes.empty()) return needs;

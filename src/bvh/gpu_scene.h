@@ -93,6 +93,9 @@ struct GpuScene {
   std::vector<float> skyMarginal;
   std::vector<float> skyConditional;
   gpu::GpuEnvironment sky{};
+  // Whether a ray can find emission (RenderParams.emissionHittable): a material emits (any
+  // material: one no surface has only costs rays), or the sky is not black.
+  bool emissionHittable() const;
   std::vector<GpuMeshRange> meshes;  // one per scene mesh
   uint32_t tlasRoot = 0;  // the top level's root node
   // The top level's root as the traversal starts from it (traverse.h, traceScene): the root

@@ -51,6 +51,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.punctualLightCount = gpuScene.punctualLightCount;
   p.adaptiveThreshold = settings.adaptiveThreshold;
   p.adaptiveMinSamples = settings.adaptiveMinSamples;
+  p.emissionHittable = gpuScene.emissionHittable() ? 1u : 0u;
   return p;
 }
 
