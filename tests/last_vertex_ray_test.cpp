@@ -1,7 +1,8 @@
 // The ray from a path's last vertex (sampleContinuation, integrator.h): traced only where a
 // ray can find emission (GpuScene::emissionHittable), since that ray can collect nothing
-// else. Where nothing can emit towards it, leaving it out must leave the image as it was, bit
-// for bit, on both backends; where a surface emits, the ray must still bring its share.
+// else (but the feature passes behind a perfect mirror). Where nothing can emit towards it,
+// leaving it out must leave the image and its passes as they were, bit for bit, on both
+// backends; where a surface emits, the ray must still bring its share.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -73,25 +74,33 @@ TEST_P(LastVertexRay, IsNotTracedWhereNothingCanEmitAndTheImageIsTheSame) {
   // lamps.gltf: three lamps, no emissive surface, no sky. Bit for bit, not within a tolerance:
   // the paths draw the same numbers either way (a path's vertices each have their own), and
   // the ray left out would have added exactly 0. Direct light alone (max depth 0), where
-  // every camera ray's vertex is the last, and with bounces.
-  const Scene scene = assetScene("lamps.gltf");
-  const GpuScene gpuScene = packScene(scene);
-  for (uint32_t maxBounces : {0u, 3u}) {
-    SCOPED_TRACE("max bounces " + std::to_string(maxBounces));
-    const Render spared = render(GetParam(), scene, gpuScene, maxBounces);
-    const Render traced = render(GetParam(), scene, withUnusedEmitter(gpuScene), maxBounces);
-    double total = 0.0;
-    for (const glm::vec4& s : spared.accumulation.sum) total += s.x + s.y + s.z;
-    EXPECT_GT(total, 0.0) << "the render is black";
-    for (uint32_t layer = 0; layer < WP_ACCUMULATION_LAYERS; ++layer) {
-      EXPECT_TRUE(*spared.accumulation.layers()[layer] == *traced.accumulation.layers()[layer])
-          << "layer " << layer << " differs";
+  // every camera ray's vertex is the last, and with bounces. Then with its gold slab a perfect
+  // mirror: a camera ray that meets it takes its feature passes (albedo, normal) from what
+  // the mirror shows, at the next vertex, so that ray is still traced at depth 0.
+  for (bool mirror : {false, true}) {
+    Scene scene = assetScene("lamps.gltf");
+    for (Material& m : scene.materials) {
+      if (mirror && m.name == "gold") m.roughness = 0.0f;
     }
-    EXPECT_LT(spared.stats.extensionRays, traced.stats.extensionRays);
-    EXPECT_EQ(spared.stats.shadowRays, traced.stats.shadowRays);
-    if (maxBounces == 0) {
-      // Only the camera rays: one per sample.
-      EXPECT_EQ(spared.stats.extensionRays, spared.stats.samples);
+    const GpuScene gpuScene = packScene(scene);
+    for (uint32_t maxBounces : {0u, 3u}) {
+      SCOPED_TRACE(std::string(mirror ? "mirror, " : "") + "max bounces " + std::to_string(maxBounces));
+      const Render spared = render(GetParam(), scene, gpuScene, maxBounces);
+      const Render traced = render(GetParam(), scene, withUnusedEmitter(gpuScene), maxBounces);
+      double total = 0.0;
+      for (const glm::vec4& s : spared.accumulation.sum) total += s.x + s.y + s.z;
+      EXPECT_GT(total, 0.0) << "the render is black";
+      for (uint32_t layer = 0; layer < WP_ACCUMULATION_LAYERS; ++layer) {
+        EXPECT_TRUE(*spared.accumulation.layers()[layer] == *traced.accumulation.layers()[layer])
+            << "layer " << layer << " differs";
+      }
+      EXPECT_LT(spared.stats.extensionRays, traced.stats.extensionRays);
+      EXPECT_EQ(spared.stats.shadowRays, traced.stats.shadowRays);
+      if (maxBounces == 0 && !mirror) {
+        EXPECT_EQ(spared.stats.extensionRays, spared.stats.samples);  // the camera rays alone
+      } else if (maxBounces == 0) {
+        EXPECT_GT(spared.stats.extensionRays, spared.stats.samples);  // and the mirror's
+      }
     }
   }
 }

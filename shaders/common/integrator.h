@@ -324,17 +324,20 @@ WP_FN_INLINED float russianRoulette(RenderParams params, uint bounce, vec3 throu
 //
 // From the last vertex a ray is still traced, only to collect emission the light sample
 // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
-// with NEE alone, what only a delta lobe reaches. Where nothing a ray can hit emits
-// (params.emissionHittable 0: lamps alone, a black sky) that ray would add exactly nothing,
-// and it is not traced: the image is the same, without the extend and shade work (40% of the
-// extension rays of a direct-light render, --max-depth 0, of the instanced scene).
+// with NEE alone, what only a delta lobe reaches; and the feature passes of a path whose
+// vertices so far were all perfectly specular (what a mirror shows, shadeHit). Where nothing
+// a ray can hit emits (params.emissionHittable 0: lamps alone, a black sky) and the features
+// are taken, that ray would add exactly nothing, and it is not traced: the image and its
+// passes are the same, without the extend and shade work (40% of the extension rays of a
+// direct-light render, --max-depth 0, of the instanced scene).
 WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, VertexDraws draws) {
   NextRay next;
   next.exists = false;
   MaterialSample bs = sampleBsdf(m, v.woLocal, draws.bsdf, params.bsdfFlags);
   bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
   bool collectsEmission = params.emissionHittable != 0u && (params.mode != WP_MODE_NEE || isDelta);
-  if (v.bounce < params.maxBounces || collectsEmission) {
+  bool featuresPending = (v.rayFlags & WP_RAY_FEATURES_TAKEN) == 0u;
+  if (v.bounce < params.maxBounces || collectsEmission || featuresPending) {
     vec3 nextThroughput = v.throughput * bs.weight;
     float survival = russianRoulette(params, v.bounce, nextThroughput, draws.roulette);
     vec3 wi = frameToWorld(v.frame, bs.wi);
