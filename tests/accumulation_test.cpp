@@ -14,7 +14,7 @@
 #include "render/wavefront.h"
 #include "scene/gltf_loader.h"
 #include "shaders/common/accumulation.h"
-#include "support/run_wavepath.h"
+#include "support/asset_scene.h"
 
 namespace wp::test {
 namespace {
@@ -45,7 +45,7 @@ TEST(LongRender, PassesCompileNoShaders) {
   // lavapipe (Mesa 22.3) compiled a new copy of every stage whose loops a uniform-buffer value
   // bounds at each bind, and kept them all: 150 KB a pass, 100 MB over a 10,000-spp render.
   // RenderParams is a storage buffer since; 60 passes here compiled about 60 shaders before.
-  const Scene scene = loadScene(sourceDirectory() / "assets" / "cornell-box.gltf");
+  const Scene scene = assetScene("cornell-box.gltf");
   const GpuScene gpuScene = packScene(scene);
   std::unique_ptr<Backend> backend = createBackend({"vulkan", -1, false, "readback"});
   RenderSettings settings;

@@ -13,12 +13,10 @@
 #include "render/wavefront.h"
 #include "scene/environment_map.h"
 #include "scene/gltf_loader.h"
-#include "support/run_wavepath.h"
+#include "support/asset_scene.h"
 
 namespace wp::test {
 namespace {
-
-Scene assetScene(const char* name) { return loadScene(sourceDirectory() / "assets" / name); }
 
 // An emissive material that no surface has: it makes emission hittable as far as
 // emissionHittable can tell, and changes nothing else (the light table comes from the

@@ -15,12 +15,12 @@
 #include "bvh/instance_baking.h"
 #include "render/wavefront.h"
 #include "scene/gltf_loader.h"
+#include "support/asset_scene.h"
 #include "support/run_wavepath.h"
 
 namespace wp::test {
 namespace {
 
-Scene assetScene(const char* name) { return loadScene(sourceDirectory() / "assets" / name); }
 GpuScene packedAsset(const char* name) { return packScene(assetScene(name)); }
 
 // Every material of `scene` without metalness (GpuMaterial.surface.x 0).
