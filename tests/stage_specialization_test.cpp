@@ -17,6 +17,7 @@
 #include "scene/gltf_loader.h"
 #include "support/asset_scene.h"
 #include "support/run_wavepath.h"
+#include "support/same_accumulation.h"
 
 namespace wp::test {
 namespace {
@@ -155,16 +156,6 @@ Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
 
 Accumulation renderVulkan(const char* asset, VulkanBuild build) {
   return renderVulkan(assetScene(asset), build);
-}
-
-// Every layer of `a` and `b` the same, bit for bit, and `a` not black.
-void expectSameBitForBit(const Accumulation& a, const Accumulation& b) {
-  double total = 0.0;
-  for (const glm::vec4& s : a.sum) total += s.x + s.y + s.z;
-  EXPECT_GT(total, 0.0) << "the render is black";
-  for (uint32_t layer = 0; layer < WP_ACCUMULATION_LAYERS; ++layer) {
-    EXPECT_TRUE(*a.layers()[layer] == *b.layers()[layer]) << "layer " << layer << " differs";
-  }
 }
 
 TEST(ShadeClasses, SplitShadeMakesTheSameImageBitForBit) {
