@@ -14,6 +14,7 @@
 #include "bvh/gpu_scene.h"
 #include "bvh/instance_baking.h"
 #include "render/wavefront.h"
+#include "scene/environment_map.h"
 #include "scene/gltf_loader.h"
 #include "support/asset_scene.h"
 #include "support/run_wavepath.h"
@@ -99,6 +100,34 @@ TEST(SceneFeatures, PlanesWhereTheSceneHasPlanes) {
   EXPECT_TRUE(box.features().planes);
 }
 
+TEST(SceneFeatures, SpheresWhereTheSceneHasSpheres) {
+  EXPECT_TRUE(packedAsset("sky-spheres.gltf").features().spheres);
+  GpuScene box = packedAsset("cornell-box.gltf");
+  EXPECT_FALSE(box.features().spheres) << "glTF meshes alone";
+  // A sphere placed among the box's instances...
+  gpu::GpuInstance sphere = box.instances[0];
+  sphere.info.x = WP_INSTANCE_SPHERE;
+  box.instances.insert(box.instances.begin() + box.placedInstances, sphere);
+  ++box.placedInstances;
+  EXPECT_TRUE(box.features().spheres);
+  // ...and only there: the motion keys after the placed instances are not instances.
+  --box.placedInstances;
+  EXPECT_FALSE(box.features().spheres);
+}
+
+// The assets' sky map (assets/sky.hdr), which tests give a scene as --sky does.
+EnvironmentMap assetSkyMap() { return loadEnvironmentMap(sourceDirectory() / "assets" / "sky.hdr"); }
+
+TEST(SceneFeatures, SkyMapWhereTheSkyHasMoreThanOneTexel) {
+  Scene scene = assetScene("sky-spheres.gltf");
+  EXPECT_FALSE(packScene(scene).features().skyMap) << "the default white sky, one texel";
+  scene.sky = assetSkyMap();
+  ASSERT_GT(scene.sky.width * scene.sky.height, 1u);
+  EXPECT_TRUE(packScene(scene).features().skyMap);
+  scene.sky = makeEnvironmentMap(1, 1, {glm::vec3(0.2f, 0.3f, 0.4f)});
+  EXPECT_FALSE(packScene(scene).features().skyMap) << "--sky-color: one texel";
+}
+
 TEST(SceneFeatures, InstancedWhereTheTopLevelsRootIsANode) {
   // The project's box as the renderer packs it: every mesh placed once, baked into one
   // instance, whose leaf the traversal starts from.
@@ -173,9 +202,10 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // Bit for bit too: a feature's constant may only remove code that the scene never runs (a
   // metal lobe of weight 0, glass of transmission 0, the sky's sampling at probability 0,
   // emission nothing has, the walk of a top level that holds one instance, the planes' loop
-  // of a scene without planes). The project's box turns the material features off (its
-  // materials are ideal diffuse), its top level holds one instance and it has no planes,
-  // materials.gltf keeps most, sky-spheres.gltf samples its sky among several instances and
+  // of a scene without planes, the spheres' intersection and surface in a scene of meshes, the
+  // sky map's coordinates under a uniform sky). The project's box turns the material features
+  // off (its materials are ideal diffuse), its top level holds one instance and it has no
+  // planes, materials.gltf keeps most, sky-spheres.gltf samples its sky map among spheres and
   // planes, and lamps.gltf without metalness keeps glTF's BRDF without its metal lobe; between
   // them each of the constants below is on in one case and off in another. The light
   // selection is the render's: power everywhere but in the last case, which selects
@@ -185,13 +215,16 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
     bool withoutMetal;
     bool solidAngle = false;
     bool baked = false;  // its meshes placed once baked into one instance, as the renderer does
+    bool skyMap = false;  // lit by the assets' sky map instead of its own sky
   };
   std::vector<SceneFeatures> covered;
   for (const Case c : {Case{"cornell-box.gltf", false, false, true}, Case{"materials.gltf", false},
-                       Case{"sky-spheres.gltf", false}, Case{"lamps.gltf", true}, Case{"lamps.gltf", false, true}}) {
+                       Case{"sky-spheres.gltf", false, false, false, true}, Case{"lamps.gltf", true},
+                       Case{"lamps.gltf", false, true}}) {
     SCOPED_TRACE(c.asset);
     Scene scene = assetScene(c.asset);
     if (c.baked) scene = bakeSingleUseMeshes(scene);
+    if (c.skyMap) scene.sky = assetSkyMap();
     GpuScene packed = packScene(scene);
     if (c.withoutMetal) removeMetalness(packed);
     covered.push_back(packed.features());
@@ -211,6 +244,8 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   EXPECT_TRUE(both(&SceneFeatures::skySampled));
   EXPECT_TRUE(both(&SceneFeatures::instanced));
   EXPECT_TRUE(both(&SceneFeatures::planes));
+  EXPECT_TRUE(both(&SceneFeatures::spheres));
+  EXPECT_TRUE(both(&SceneFeatures::skyMap));
 }
 
 // A scene of deep trees under a lamp: a soup of 4000 random triangles, whose bottom level

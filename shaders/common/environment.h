@@ -80,7 +80,7 @@ WP_FN vec3 environmentRadiance(WP_BUFFERS GpuEnvironment env, vec3 direction) {
   // A uniform sky (the default white one, --sky-color, or none: one texel) needs no map
   // coordinates, which cost two arctangents (slow in PoCL's math library).
   uint index = 0u;
-  if (env.width * env.height > 1u) {
+  if (WP_SCENE_SKY_MAP && env.width * env.height > 1u) {
     index = environmentTexel(env, environmentUv(env, direction));
   }
   vec4 texel = WP_LOAD(skyRadiance, index);

@@ -52,6 +52,8 @@ typedef uint4 uvec4;
 #define WP_SCENE_SKY_SAMPLED true
 #define WP_SCENE_INSTANCED true
 #define WP_SCENE_PLANES true
+#define WP_SCENE_SPHERES true
+#define WP_SCENE_SKY_MAP true
 #define WP_RENDER_SOLID_ANGLE_SELECTION true
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;

@@ -65,6 +65,12 @@ layout(constant_id = 14) const bool WP_SCENE_INSTANCED = true;
 // Whether the scene has planes (traverse.h): their loop runs once per ray on lavapipe even
 // where there are none.
 layout(constant_id = 15) const bool WP_SCENE_PLANES = true;
+// Whether the scene has spheres (traverse.h, surface.h), and whether its sky is a map of more
+// than one texel (environment.h): lavapipe runs both sides of every branch, so a triangle
+// hit paid for the sphere's and the plane's surface, and a miss under a uniform sky for the
+// map's two arctangents.
+layout(constant_id = 16) const bool WP_SCENE_SPHERES = true;
+layout(constant_id = 17) const bool WP_SCENE_SKY_MAP = true;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

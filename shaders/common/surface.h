@@ -95,11 +95,11 @@ WP_FN vec4 colorAt(GpuTriangleShading shading, vec2 b) {
 // reconstructing the surface: surfaceAt's, and what Vulkan's first shade pipeline sorts the
 // hits into shade classes by (shade.comp). An instance's kind and material do not move.
 WP_FN uint hitMaterial(WP_BUFFERS uint instanceField, uint primitive) {
-  if ((instanceField & WP_HIT_PLANE) != 0u) {
+  if (WP_SCENE_PLANES && (instanceField & WP_HIT_PLANE) != 0u) {
     return planeMaterial(WP_LOAD(planes, instanceField & ~WP_HIT_PLANE));
   }
   GpuInstance inst = WP_LOAD(instances, instanceField);
-  if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
+  if (WP_SCENE_SPHERES && instanceKind(inst) == WP_INSTANCE_SPHERE) {
     return instanceSphereMaterial(inst);
   }
   return triangleMaterial(WP_LOAD(triangles, primitive));
@@ -116,14 +116,14 @@ WP_FN_INLINED SurfaceHit surfaceAt(WP_BUFFERS uint instanceField, uint primitive
   s.tangent = make_vec3(1.0f, 0.0f, 0.0f);
   s.bitangent = make_vec3(0.0f, 1.0f, 0.0f);
   s.material = hitMaterial(WP_BUFFERS_ARG instanceField, primitive);
-  if ((instanceField & WP_HIT_PLANE) != 0u) {
+  if (WP_SCENE_PLANES && (instanceField & WP_HIT_PLANE) != 0u) {
     GpuPlane plane = WP_LOAD(planes, instanceField & ~WP_HIT_PLANE);
     s.normal = planeNormal(plane);
     s.shadingNormal = s.normal;
     return s;
   }
   GpuInstance inst = instanceAt(WP_BUFFERS_ARG instanceField, time);
-  if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
+  if (WP_SCENE_SPHERES && instanceKind(inst) == WP_INSTANCE_SPHERE) {
     s.normal = normalToWorld(inst, pointToObject(inst, position));
     s.shadingNormal = s.normal;
     return s;

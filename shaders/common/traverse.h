@@ -302,7 +302,7 @@ WP_FN_INLINED Hit intersectInstance(WP_BUFFERS uint i, vec3 origin, vec3 directi
   GpuInstance inst = instanceAt(WP_BUFFERS_ARG i, time);
   vec3 o = pointToObject(inst, origin);
   vec3 d = directionToObject(inst, direction);
-  if (instanceKind(inst) == WP_INSTANCE_SPHERE) {
+  if (WP_SCENE_SPHERES && instanceKind(inst) == WP_INSTANCE_SPHERE) {
     float t = intersectUnitSphere(o, d, hit.t);
     if (t < hit.t) {
       hit.t = t;

@@ -500,6 +500,9 @@ SceneFeatures GpuScene::features() const {
   f.skySampled = sky.selectionProbability > 0.0f;
   f.instanced = gpu::entryCount(topLevelEntry()) == 0;
   f.planes = !planes.empty();
+  f.spheres = std::any_of(instances.begin(), instances.begin() + placedInstances,
+                          [](const gpu::GpuInstance& i) { return gpu::instanceKind(i) == WP_INSTANCE_SPHERE; });
+  f.skyMap = uint64_t(sky.width) * sky.height > 1;
   // Only the materials some surface has: a material nothing uses would only cost code.
   std::vector<bool> used(materials.size(), false);
   auto use = [&](uint32_t material) {
@@ -556,6 +559,8 @@ SceneFeatures SceneFeatures::everything() {
   f.skySampled = true;
   f.instanced = true;
   f.planes = true;
+  f.spheres = true;
+  f.skyMap = true;
   return f.withNeeds(WP_NEEDS_MICROFACET | WP_NEEDS_LAYERS | WP_NEEDS_TRANSMISSION | WP_NEEDS_METAL);
 }
 

@@ -38,7 +38,9 @@ struct SceneFeatures {
   // traverse.h): most scenes without instancing hold one instance, every mesh placed once
   // baked into world space (instance_baking.h).
   bool instanced = false;
-  bool planes = false;  // the scene has planes (traverse.h)
+  bool planes = false;   // the scene has planes (traverse.h, surface.h)
+  bool spheres = false;  // the scene has spheres (traverse.h, surface.h)
+  bool skyMap = false;   // the sky is a map of more than one texel, not uniform (environment.h)
   // Both shade classes (layout.h): materials that need glTF's BRDF and materials that need
   // none of it. Vulkan then shades each class with a pipeline of its own (shade.comp).
   bool hasBothShadeClasses() const { return diffuse && microfacet; }
