@@ -78,7 +78,9 @@ WP_FN uint environmentTexel(GpuEnvironment env, vec2 uv) {
 // Sky radiance seen along `direction` (unit), intensity included: the nearest texel.
 WP_FN vec3 environmentRadiance(WP_BUFFERS GpuEnvironment env, vec3 direction) {
   // A uniform sky (the default white one, --sky-color, or none: one texel) needs no map
-  // coordinates, which cost two arctangents (slow in PoCL's math library).
+  // coordinates, which cost two arctangents (slow in PoCL's math library); Vulkan compiles
+  // them out of a scene whose sky has one texel (WP_SCENE_SKY_MAP), since lavapipe runs the
+  // branch whatever its condition.
   uint index = 0u;
   if (WP_SCENE_SKY_MAP && env.width * env.height > 1u) {
     index = environmentTexel(env, environmentUv(env, direction));

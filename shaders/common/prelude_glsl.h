@@ -62,8 +62,8 @@ layout(constant_id = 13) const uint WP_BOTTOM_LEVEL_STACK_ENTRIES = 1u;
 // Whether the top level's root is a node (GpuScene::topLevelEntry, traverse.h): false where it
 // is a single instance's leaf, which the traversal then enters without the walk's code.
 layout(constant_id = 14) const bool WP_SCENE_INSTANCED = true;
-// Whether the scene has planes (traverse.h): their loop runs once per ray on lavapipe even
-// where there are none.
+// Whether the scene has planes (traverse.h, surface.h): their loop runs once per ray on
+// lavapipe even where there are none.
 layout(constant_id = 15) const bool WP_SCENE_PLANES = true;
 // Whether the scene has spheres (traverse.h, surface.h), and whether its sky is a map of more
 // than one texel (environment.h): lavapipe runs both sides of every branch, so a triangle

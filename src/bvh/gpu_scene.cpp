@@ -500,8 +500,6 @@ SceneFeatures GpuScene::features() const {
   f.skySampled = sky.selectionProbability > 0.0f;
   f.instanced = gpu::entryCount(topLevelEntry()) == 0;
   f.planes = !planes.empty();
-  f.spheres = std::any_of(instances.begin(), instances.begin() + placedInstances,
-                          [](const gpu::GpuInstance& i) { return gpu::instanceKind(i) == WP_INSTANCE_SPHERE; });
   f.skyMap = uint64_t(sky.width) * sky.height > 1;
   // Only the materials some surface has: a material nothing uses would only cost code.
   std::vector<bool> used(materials.size(), false);
@@ -510,7 +508,9 @@ SceneFeatures GpuScene::features() const {
   };
   for (const gpu::GpuTriangle& t : triangles) use(gpu::triangleMaterial(t));
   for (uint32_t i = 0; i < placedInstances; ++i) {
-    if (gpu::instanceKind(instances[i]) == WP_INSTANCE_SPHERE) use(gpu::instanceSphereMaterial(instances[i]));
+    if (gpu::instanceKind(instances[i]) != WP_INSTANCE_SPHERE) continue;
+    f.spheres = true;
+    use(gpu::instanceSphereMaterial(instances[i]));
   }
   for (const gpu::GpuPlane& p : planes) use(gpu::planeMaterial(p));
   uint32_t needs = 0;
