@@ -133,6 +133,8 @@ public:
   virtual std::string deviceName() const = 0;
   // The most paths the device can keep in flight in one pass (dispatch and buffer limits).
   virtual uint32_t maxPathsInFlight() const = 0;
+  // Whether the device is a CPU implementation (lavapipe, PoCL) rather than a GPU.
+  virtual bool onCpu() const = 0;
   // Uploads the scene and picks the stage kernels for it: with motion blur where something
   // moves (GpuScene::moving), else without. Call before configure; may be called again to
   // replace the scene. Throws wp::Error, naming the array, its size and the device's limit,

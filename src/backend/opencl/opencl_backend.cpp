@@ -87,6 +87,8 @@ uint32_t OpenClBackend::maxPathsInFlight() const {
   return uint32_t(std::min({byAllocation, byMemory, uint64_t(UINT32_MAX)}));
 }
 
+bool OpenClBackend::onCpu() const { return context_->device.type == "CPU"; }
+
 uint64_t OpenClBackend::pathStateBytes(uint64_t maxPaths) const {
   return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kBytesPerPath + sizeof(gpu::QueueCounters);
 }

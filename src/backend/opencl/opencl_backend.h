@@ -42,6 +42,7 @@ public:
 
   std::string deviceName() const override;
   uint32_t maxPathsInFlight() const override;
+  bool onCpu() const override;
   uint64_t maxAccumulationPixels(uint32_t maxPaths) const override;
   void loadScene(const GpuScene& scene) override;
   bool motionKernels() const override { return motion_; }

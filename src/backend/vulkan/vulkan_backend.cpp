@@ -162,6 +162,8 @@ uint32_t VulkanBackend::maxPathsInFlight() const {
   return uint32_t(std::min({byDispatch, byStorage, byTexels, byMemory, uint64_t(UINT32_MAX)}));
 }
 
+bool VulkanBackend::onCpu() const { return context_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+
 uint64_t VulkanBackend::pathStateBytes(uint64_t maxPaths) const {
   return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kVulkanBytesPerPath + sizeof(gpu::QueueCounters);
 }
@@ -284,10 +286,9 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   const SceneFeatures sceneFeatures = scene.features();
   const SceneFeatures features = specializeToScene_ ? sceneFeatures : SceneFeatures::everything();
   const bool split = splitShadeByMaterial_ && sceneFeatures.hasBothShadeClasses();
+  const StackDevice stackDevice{context_->properties.limits.maxComputeSharedMemorySize, onCpu()};
   const StackPlacement stacks =
-      specializeToScene_
-          ? placeStacks(scene.stackNeeds(), context_->properties.limits.maxComputeSharedMemorySize, stacks_)
-          : StackPlacement{};
+      specializeToScene_ ? placeStacks(scene.stackNeeds(), stackDevice, stacks_) : StackPlacement{};
   const bool respecialize = !(features == sceneFeatures_) || split != splitShade_ || !(stacks == stacks_);
   sceneFeatures_ = features;
   stacks_ = stacks;
