@@ -326,7 +326,9 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
                   "solid angle times luminance from the shading point; a pass over all lights per sample)")
       ->transform(CLI::CheckedTransformer(selections, CLI::ignore_case));
   cmd->add_option("--rr-start", s.russianRouletteStart, "First bounce at which Russian roulette may end a path");
-  cmd->add_option("--max-paths", s.maxPaths, "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds)")
+  cmd->add_option("--max-paths", s.maxPaths,
+                  "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds). "
+                  "Default: 4194240 on a GPU, 1048576 on a CPU (lavapipe, PoCL)")
       ->check(CLI::Range(64u, 4194240u));
   cmd->add_option("--backend", o.backend, "Compute backend: vulkan (the default) or opencl")
       ->check(CLI::IsMember({"vulkan", "opencl"}));

@@ -43,8 +43,8 @@ struct RenderSettings {
   // image's energy, and ending them early adds variance for little saved work.
   uint32_t russianRouletteStart = 3;
   // Paths in flight per sample pass: bounds GPU memory (about 200 bytes a path) whatever
-  // the image size.
-  uint32_t maxPaths = 1u << 20;
+  // the image size. 0: as many as suit the device (defaultPathsInFlight, wavefront.h).
+  uint32_t maxPaths = 0;
   // Next event estimation samples the sky by its luminance (environment.h); off, only rays
   // that BSDF sampling sends out find it (to show what sky sampling is worth).
   bool skySampling = true;

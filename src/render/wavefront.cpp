@@ -12,6 +12,7 @@
 #include "render/camera_lens.h"
 #include "scene/scene.h"
 #include "shaders/common/bsdf_models.h"
+#include "shaders/common/layout.h"
 
 namespace wp {
 
@@ -41,8 +42,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.planeCount = uint32_t(gpuScene.planes.size());
   p.topLevel = gpuScene.topLevelEntry();
   p.instanceCount = gpuScene.placedInstances;
-  uint64_t totalPaths = uint64_t(p.pixelCount) * settings.samplesInRange();
-  p.maxPaths = uint32_t(std::clamp<uint64_t>(totalPaths, 1, settings.maxPaths));
+  // p.maxPaths, the paths of a pass, depends on the device and the tile: set by configureTile.
   p.bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
                 (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
   p.contributionClamp = settings.contributionClamp;
@@ -54,6 +54,8 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.emissionHittable = gpuScene.emissionHittable() ? 1u : 0u;
   return p;
 }
+
+uint32_t defaultPathsInFlight(bool onCpu) { return onCpu ? 1u << 20 : 65535u * WP_WORKGROUP_SIZE; }
 
 std::vector<PixelRegion> splitIntoTiles(const PixelRegion& region, uint64_t maxPixels) {
   const uint32_t height = region.height();
@@ -77,7 +79,8 @@ WavefrontRenderer::WavefrontRenderer(Backend& backend, const Scene& scene, const
 
 void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings) {
   settings_ = settings;
-  settings_.maxPaths = std::min(settings_.maxPaths, backend_.maxPathsInFlight());
+  const uint32_t wanted = settings_.maxPaths != 0 ? settings_.maxPaths : defaultPathsInFlight(backend_.onCpu());
+  settings_.maxPaths = std::min(wanted, backend_.maxPathsInFlight());
   params_ = makeRenderParams(scene, gpuScene, settings_);
   const PixelRegion region = settings_.pixelRegion();
   firstPath_ = region.pixels() * settings_.firstSample;
