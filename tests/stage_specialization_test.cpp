@@ -10,6 +10,7 @@
 #include <random>
 
 #include "app/backend_factory.h"
+#include "backend/opencl/opencl_backend.h"
 #include "backend/vulkan/vulkan_backend.h"
 #include "bvh/gpu_scene.h"
 #include "bvh/instance_baking.h"
@@ -159,14 +160,9 @@ struct VulkanBuild {
   StackPlacement* placedStacks = nullptr;  // where the stages kept their stacks, if given
 };
 
-// The accumulation of `scene` (small, a few samples, every bounce) rendered on Vulkan under
-// the validation layer, built as `build` says.
-Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
-  const BackendChoice choice{"vulkan", -1, true, "readback"};
-  std::unique_ptr<Backend> backend = createBackend(choice);
-  auto& vulkan = dynamic_cast<VulkanBackend&>(*backend);
-  vulkan.splitShadeByMaterial(build.split);
-  vulkan.specializeToScene(build.specialize);
+// Renders `scene` (small, a few samples, every bounce) on `backend` as `build` says and
+// returns the accumulation.
+Accumulation renderOn(Backend& backend, const Scene& scene, const VulkanBuild& build) {
   GpuScene gpuScene = packScene(scene);
   if (build.withoutMetal) removeMetalness(gpuScene);
   RenderSettings settings;
@@ -176,11 +172,32 @@ Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
   settings.maxBounces = 8;
   settings.maxPaths = 64 * 48 * 2;  // two passes
   settings.lightSelection = build.solidAngle ? LightSelection::SolidAngle : LightSelection::Power;
-  WavefrontRenderer renderer(*backend, scene, gpuScene, settings);
+  WavefrontRenderer renderer(backend, scene, gpuScene, settings);
   renderer.render(nullptr);
+  return backend.readAccumulation();
+}
+
+// The accumulation of `scene` rendered on Vulkan under the validation layer, built as `build`
+// says.
+Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
+  const BackendChoice choice{"vulkan", -1, true, "readback"};
+  std::unique_ptr<Backend> backend = createBackend(choice);
+  auto& vulkan = dynamic_cast<VulkanBackend&>(*backend);
+  vulkan.splitShadeByMaterial(build.split);
+  vulkan.specializeToScene(build.specialize);
+  Accumulation accumulation = renderOn(*backend, scene, build);
   checkValidation(choice);
   if (build.placedStacks) *build.placedStacks = vulkan.stackPlacement();
-  return backend->readAccumulation();
+  return accumulation;
+}
+
+// The same on OpenCL (PoCL), its kernels built with warnings as errors and its queue counters
+// checked; `build.split` and `build.placedStacks` are Vulkan's alone.
+Accumulation renderOpenCl(const Scene& scene, VulkanBuild build) {
+  const BackendChoice choice{"opencl", -1, true, "readback"};
+  std::unique_ptr<Backend> backend = createBackend(choice);
+  dynamic_cast<OpenClBackend&>(*backend).specializeToScene(build.specialize);
+  return renderOn(*backend, scene, build);
 }
 
 Accumulation renderVulkan(const char* asset, VulkanBuild build) {
@@ -228,9 +245,12 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
     GpuScene packed = packScene(scene);
     if (c.withoutMetal) removeMetalness(packed);
     covered.push_back(packed.features());
-    expectSameBitForBit(
-        renderVulkan(scene, {.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}),
-        renderVulkan(scene, {.specialize = false, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle}));
+    const VulkanBuild specialized{.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle};
+    VulkanBuild everything = specialized;
+    everything.specialize = false;
+    expectSameBitForBit(renderVulkan(scene, specialized), renderVulkan(scene, everything));
+    // OpenCL builds a program per scene with what it lacks defined false (prelude_cl.h).
+    expectSameBitForBit(renderOpenCl(scene, specialized), renderOpenCl(scene, everything));
   }
   auto both = [&](bool SceneFeatures::*feature) {
     bool on = false;

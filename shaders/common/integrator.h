@@ -240,7 +240,7 @@ WP_FN_INLINED float emissionMisWeight(WP_BUFFERS RenderParams params, PathRay ra
 // seen from wo), weighted against next event estimation.
 WP_FN_INLINED vec3 emissionAtHit(WP_BUFFERS RenderParams params, PathRay ray, SurfaceHit s, GpuMaterial m, vec3 wo,
                          vec3 throughput, float t) {
-  if (!WP_SCENE_EMISSIVE) {  // (no material emits: Vulkan compiles the rest away)
+  if (!WP_SCENE_EMISSIVE) {  // (no material emits: Vulkan and OpenCL compile the rest away)
     return make_vec3(0.0f, 0.0f, 0.0f);
   }
   vec3 emission = emittedRadiance(xyz(m.emission), m.emission.w != 0.0f, s.normal, wo);
@@ -264,7 +264,7 @@ WP_FN_INLINED bool samplesLights(RenderParams params) {
 WP_FN_INLINED LightSample sampleSkyOrLight(WP_BUFFERS RenderParams params, vec3 position, float time, vec3 u) {
   float skyChoice = params.sky.selectionProbability;
   LightSample ls;
-  // (WP_SCENE_SKY_SAMPLED false: skyChoice is 0, and Vulkan compiles the sky's sampling away.)
+  // (WP_SCENE_SKY_SAMPLED false: skyChoice is 0, and Vulkan and OpenCL compile the sky's sampling away.)
   if (WP_SCENE_SKY_SAMPLED && u.x < skyChoice) {
     ls = sampleEnvironment(WP_BUFFERS_ARG params.sky, make_vec2(u.y, u.z));
     ls.pdf *= skyChoice;

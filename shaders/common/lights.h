@@ -297,7 +297,7 @@ WP_FN LightChoice selectLightBySolidAngle(WP_BUFFERS uint lightCount, vec3 posit
 WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection, vec3 position,
                                       float time, vec3 u) {
   LightChoice choice;
-  // (WP_RENDER_SOLID_ANGLE_SELECTION false: selection is power, and Vulkan compiles the
+  // (WP_RENDER_SOLID_ANGLE_SELECTION false: selection is power, and Vulkan and OpenCL compile the
   // solid-angle loops away.)
   if (WP_RENDER_SOLID_ANGLE_SELECTION && selection == WP_LIGHT_SELECTION_SOLID_ANGLE) {
     choice = selectLightBySolidAngle(WP_BUFFERS_ARG lightCount, position, time, u.x);
@@ -309,7 +309,7 @@ WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection
     return noLightSample();
   }
   GpuLight light = WP_LOAD(lights, choice.index);
-  // (WP_SCENE_EMISSIVE false: no triangle lights, and Vulkan compiles their sampling away.)
+  // (WP_SCENE_EMISSIVE false: no triangle lights, and Vulkan and OpenCL compile their sampling away.)
   LightSample s = WP_SCENE_EMISSIVE && lightKind(light) == WP_LIGHT_TRIANGLE
                       ? sampleLightTriangle(WP_BUFFERS_ARG light, position, make_vec2(u.y, u.z))
                       : samplePunctualLight(light, position, time);

@@ -114,7 +114,7 @@ WP_FN_INLINED MaterialSample sampleBaseMaterial(SurfaceMaterial m, vec3 wo, vec3
   MaterialSample s;
   float chosen;
   // (WP_SCENE_METALLIC false: no material has metalness, w.metal is 0 and this never runs,
-  // and Vulkan compiles the metal lobe away.)
+  // and Vulkan and OpenCL compile the metal lobe away.)
   if (WP_SCENE_METALLIC && u.x < w.metal) {
     chosen = w.metal;
     s = sampleMetal(m.baseColor, m.roughness, wo, make_vec3(rescaleUniform(u.x, w.metal), u.y, u.z));
@@ -159,7 +159,7 @@ WP_FN_INLINED MaterialSample sampleBaseMaterial(SurfaceMaterial m, vec3 wo, vec3
 // GGX of IOR 1.5 (F0 0.04) with its own roughness and normal; the sheen, Charlie's lobe.
 // Directions are mirrored into wo's hemisphere, as the opaque lobes are.
 
-// (WP_SCENE_LAYERED false: the scene has none, and Vulkan compiles the layers away.)
+// (WP_SCENE_LAYERED false: the scene has none, and Vulkan and OpenCL compile the layers away.)
 WP_FN bool hasLayers(SurfaceMaterial m) {
   return WP_SCENE_LAYERED && (m.clearcoat > 0.0f || max(m.sheenColor.x, max(m.sheenColor.y, m.sheenColor.z)) > 0.0f);
 }

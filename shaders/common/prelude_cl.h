@@ -41,20 +41,48 @@ typedef uint4 uvec4;
 // are inlined, the most common material of glTF files: shade 8% faster on the Blender box,
 // 5% on the instanced scene, no longer to compile.
 #define WP_FN_INLINED __attribute__((always_inline))
-// What the scene has (prelude_glsl.h): only Vulkan specializes the stages for it.
+// What the scene has (prelude_glsl.h), and the render's light selection: the backend builds a
+// program for each scene with what it lacks defined false (openClProgramOptions); on, as here,
+// where nothing says.
+#ifndef WP_SCENE_ALPHA_TESTED
 #define WP_SCENE_ALPHA_TESTED true
+#endif
+#ifndef WP_SCENE_LAYERED
 #define WP_SCENE_LAYERED true
+#endif
+#ifndef WP_SCENE_TEXTURED
 #define WP_SCENE_TEXTURED true
+#endif
+#ifndef WP_SCENE_TRANSMISSIVE
 #define WP_SCENE_TRANSMISSIVE true
+#endif
+#ifndef WP_SCENE_MICROFACET
 #define WP_SCENE_MICROFACET true
+#endif
+#ifndef WP_SCENE_METALLIC
 #define WP_SCENE_METALLIC true
+#endif
+#ifndef WP_SCENE_EMISSIVE
 #define WP_SCENE_EMISSIVE true
+#endif
+#ifndef WP_SCENE_SKY_SAMPLED
 #define WP_SCENE_SKY_SAMPLED true
+#endif
+#ifndef WP_SCENE_INSTANCED
 #define WP_SCENE_INSTANCED true
+#endif
+#ifndef WP_SCENE_PLANES
 #define WP_SCENE_PLANES true
+#endif
+#ifndef WP_SCENE_SPHERES
 #define WP_SCENE_SPHERES true
+#endif
+#ifndef WP_SCENE_SKY_MAP
 #define WP_SCENE_SKY_MAP true
+#endif
+#ifndef WP_RENDER_SOLID_ANGLE_SELECTION
 #define WP_RENDER_SOLID_ANGLE_SELECTION true
+#endif
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

@@ -40,7 +40,8 @@ inline thread_local DeepestStacks deepestStacks;
 #define WP_END }
 #define WP_FN inline
 #define WP_FN_INLINED inline
-// What the scene has (prelude_glsl.h): only Vulkan specializes the stages for it.
+// What the scene has (prelude_glsl.h): Vulkan and OpenCL specialize the stages to it; C++ runs
+// everything.
 #define WP_SCENE_ALPHA_TESTED true
 #define WP_SCENE_LAYERED true
 #define WP_SCENE_TEXTURED true

@@ -341,7 +341,7 @@ WP_FN Hit traceScene(WP_BUFFERS uint topLevel, uint planeCount, vec3 origin, vec
   hit.instance = WP_INVALID;
   hit.primitive = WP_INVALID;
   hit.alphaTested = false;
-  // Planes first: a near plane shortens every box test that follows. (Vulkan compiles the
+  // Planes first: a near plane shortens every box test that follows. (Vulkan and OpenCL compile the
   // loop out of a scene without planes, WP_SCENE_PLANES: on lavapipe its body, a plane's fetch
   // and test, ran once for every ray.)
   if (WP_SCENE_PLANES) {

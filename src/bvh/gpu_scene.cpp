@@ -550,6 +550,15 @@ SceneFeatures SceneFeatures::withNeeds(uint32_t needs) const {
   return f;
 }
 
+std::vector<std::pair<const char*, bool>> SceneFeatures::macros() const {
+  return {{"WP_SCENE_ALPHA_TESTED", alphaTested}, {"WP_SCENE_LAYERED", layered},
+          {"WP_SCENE_TEXTURED", textured},        {"WP_SCENE_TRANSMISSIVE", transmissive},
+          {"WP_SCENE_MICROFACET", microfacet},    {"WP_SCENE_METALLIC", metallic},
+          {"WP_SCENE_EMISSIVE", emissive},        {"WP_SCENE_SKY_SAMPLED", skySampled},
+          {"WP_SCENE_INSTANCED", instanced},      {"WP_SCENE_PLANES", planes},
+          {"WP_SCENE_SPHERES", spheres},          {"WP_SCENE_SKY_MAP", skyMap}};
+}
+
 SceneFeatures SceneFeatures::everything() {
   SceneFeatures f;
   f.alphaTested = true;

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -47,8 +48,11 @@ struct SceneFeatures {
   // These features with the material ones (layers, transmission, metal, microfacet) as `needs`
   // says (WP_NEEDS_* bits, materialShadeNeeds).
   SceneFeatures withNeeds(uint32_t needs) const;
-  // Every feature: the stages as C++ and OpenCL run them.
+  // Every feature: the stages as C++ run them.
   static SceneFeatures everything();
+  // Each feature the stages test by name (WP_SCENE_*, prelude_cl.h and prelude_glsl.h) and its
+  // value here: OpenCL builds its programs with them defined.
+  std::vector<std::pair<const char*, bool>> macros() const;
   bool operator==(const SceneFeatures&) const = default;
 };
 

@@ -5,13 +5,16 @@
 #include <CL/cl.h>
 
 #include <array>
+#include <map>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "backend/opencl/opencl_buffer.h"
 #include "backend/opencl/opencl_context.h"
 #include "backend/opencl/opencl_program.h"
+#include "bvh/gpu_scene.h"
 #include "render/backend.h"
 #include "render/device_limits.h"
 
@@ -30,8 +33,11 @@ enum class ClDispatch {
 // The options the kernels are built with on `device`: OpenCL C 1.2 with denormals flushed
 // to zero; warnings as errors with `validate`; WP_MOTION_BLUR for the `motion` variant;
 // WP_WORK_ITEMS_ARE_THREADS on a CPU device, where each work-item runs as a thread's scalar
-// code (prelude_cl.h).
-std::string openClProgramOptions(const OpenClDeviceInfo& device, bool validate, bool motion);
+// code (prelude_cl.h); each WP_SCENE_* feature the scene lacks defined false, and
+// WP_RENDER_SOLID_ANGLE_SELECTION where lights are selected by power (prelude_cl.h).
+std::string openClProgramOptions(const OpenClDeviceInfo& device, bool validate, bool motion,
+                                 const SceneFeatures& features = SceneFeatures::everything(),
+                                 bool solidAngleSelection = true);
 
 class OpenClBackend final : public Backend {
 public:
@@ -53,31 +59,42 @@ public:
   Accumulation readAccumulation() override;
   void writeAccumulation(const Accumulation& accumulation) override;
 
+  // For tests: build the stages with every feature and light selection (true, the default:
+  // specialized to the loaded scene and the render), from the next configure on.
+  void specializeToScene(bool specialize) { specializeToScene_ = specialize; }
+
 private:
-  // Builds the program and kernels with (`motion`) or without WP_MOTION_BLUR.
-  void buildVariant(bool motion);
+  // Makes the stages built with the options of the loaded scene and the render current
+  // (variantOptions), building them the first time.
+  void useVariant();
+  std::string variantOptions() const;
   // Sets kernel argument `binding` (binding_table.h) of every kernel of the current variant to `buffer`.
   void bind(uint32_t binding, const OpenClBuffer& buffer);
   // Work items for a launch sized by the dispatch arguments at counters word `word`.
   uint32_t queueThreads(uint32_t word);
   // The counters buffer as words (WP_COUNTER_*), after everything enqueued so far.
   std::array<uint32_t, WP_COUNTER_WORDS> readCounters();
-  // Binds the buffers configure made (everything but the scene) to the current variant.
-  void bindPathState();
+  // Binds the scene's buffers and those configure made to the current variant's kernels.
+  void bindBuffers();
   // Device memory of the scene and of maxPaths paths in flight, without the accumulation.
   uint64_t pathStateBytes(uint64_t maxPaths) const;
   void checkCounters(const std::array<uint32_t, WP_COUNTER_WORDS>& counters) const;
 
   std::unique_ptr<OpenClContext> context_;
   DeviceLimits limits_;  // the device's, with the testing cap (withBufferCap)
-  // The stage kernels built without ([0]) and with ([1]) motion blur; [1] only once a
-  // moving scene was loaded. motion_ picks the ones loadScene chose.
+  // The stage kernels of each set of build options a scene or render asked for (motion blur,
+  // the scene's features, the light selection), built when first asked for; variant_ is the
+  // current one's.
   struct Variant {
     std::unique_ptr<OpenClProgram> program;
     std::array<cl_kernel, kKernelCount> kernels{};
   };
-  std::array<Variant, 2> variants_;
+  std::map<std::string, Variant> variants_;
+  Variant* variant_ = nullptr;
   bool motion_ = false;
+  bool specializeToScene_ = true;
+  SceneFeatures sceneFeatures_ = SceneFeatures::everything();
+  bool solidAngleSelection_ = true;
   ClDispatch dispatchMode_;
   bool validate_;
 
