@@ -151,18 +151,18 @@ TEST(SceneFeatures, InstancedWhereTheTopLevelsRootIsANode) {
   EXPECT_TRUE(empty.features().instanced);
 }
 
-// How renderVulkan builds the stages and the scene.
-struct VulkanBuild {
-  bool split = true;            // shade split by class where the scene has both
+// How renderVulkan and renderOpenCl build the stages and the scene.
+struct StageBuild {
+  bool split = true;            // shade split by class where the scene has both (Vulkan)
   bool specialize = true;       // the stages specialized to the scene's features
   bool withoutMetal = false;    // every material's metalness 0 (removeMetalness)
   bool solidAngle = false;      // lights selected by solid angle, not by power
-  StackPlacement* placedStacks = nullptr;  // where the stages kept their stacks, if given
+  StackPlacement* placedStacks = nullptr;  // where Vulkan's stages kept their stacks, if given
 };
 
 // Renders `scene` (small, a few samples, every bounce) on `backend` as `build` says and
 // returns the accumulation.
-Accumulation renderOn(Backend& backend, const Scene& scene, const VulkanBuild& build) {
+Accumulation renderOn(Backend& backend, const Scene& scene, const StageBuild& build) {
   GpuScene gpuScene = packScene(scene);
   if (build.withoutMetal) removeMetalness(gpuScene);
   RenderSettings settings;
@@ -179,7 +179,7 @@ Accumulation renderOn(Backend& backend, const Scene& scene, const VulkanBuild& b
 
 // The accumulation of `scene` rendered on Vulkan under the validation layer, built as `build`
 // says.
-Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
+Accumulation renderVulkan(const Scene& scene, StageBuild build) {
   const BackendChoice choice{"vulkan", -1, true, "readback"};
   std::unique_ptr<Backend> backend = createBackend(choice);
   auto& vulkan = dynamic_cast<VulkanBackend&>(*backend);
@@ -192,15 +192,15 @@ Accumulation renderVulkan(const Scene& scene, VulkanBuild build) {
 }
 
 // The same on OpenCL (PoCL), its kernels built with warnings as errors and its queue counters
-// checked; `build.split` and `build.placedStacks` are Vulkan's alone.
-Accumulation renderOpenCl(const Scene& scene, VulkanBuild build) {
+// checked.
+Accumulation renderOpenCl(const Scene& scene, StageBuild build) {
   const BackendChoice choice{"opencl", -1, true, "readback"};
   std::unique_ptr<Backend> backend = createBackend(choice);
   dynamic_cast<OpenClBackend&>(*backend).specializeToScene(build.specialize);
   return renderOn(*backend, scene, build);
 }
 
-Accumulation renderVulkan(const char* asset, VulkanBuild build) {
+Accumulation renderVulkan(const char* asset, StageBuild build) {
   return renderVulkan(assetScene(asset), build);
 }
 
@@ -245,8 +245,8 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
     GpuScene packed = packScene(scene);
     if (c.withoutMetal) removeMetalness(packed);
     covered.push_back(packed.features());
-    const VulkanBuild specialized{.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle};
-    VulkanBuild everything = specialized;
+    const StageBuild specialized{.specialize = true, .withoutMetal = c.withoutMetal, .solidAngle = c.solidAngle};
+    StageBuild everything = specialized;
     everything.specialize = false;
     expectSameBitForBit(renderVulkan(scene, specialized), renderVulkan(scene, everything));
     // OpenCL builds a program per scene with what it lacks defined false (prelude_cl.h).

@@ -135,9 +135,10 @@ public:
   virtual uint32_t maxPathsInFlight() const = 0;
   // Whether the device is a CPU implementation (lavapipe, PoCL) rather than a GPU.
   virtual bool onCpu() const = 0;
-  // Uploads the scene and picks the stage kernels for it: with motion blur where something
-  // moves (GpuScene::moving), else without. Call before configure; may be called again to
-  // replace the scene. Throws wp::Error, naming the array, its size and the device's limit,
+  // Uploads the scene and chooses the stage kernels for it: with motion blur where something
+  // moves (GpuScene::moving), else without, specialized to its features; they are in place
+  // once configure has run (OpenCL builds them there, knowing the render's light selection
+  // too). Call before configure; may be called again to replace the scene. Throws wp::Error, naming the array, its size and the device's limit,
   // when an array or the whole scene does not fit the device.
   virtual void loadScene(const GpuScene& scene) = 0;
   // Whether the kernels of the loaded scene are the motion-blur ones.
