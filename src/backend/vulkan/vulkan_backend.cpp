@@ -162,7 +162,7 @@ uint32_t VulkanBackend::maxPathsInFlight() const {
   return uint32_t(std::min({byDispatch, byStorage, byTexels, byMemory, uint64_t(UINT32_MAX)}));
 }
 
-bool VulkanBackend::onCpu() const { return context_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+bool VulkanBackend::onCpu() const { return context_->onCpu(); }
 
 uint64_t VulkanBackend::pathStateBytes(uint64_t maxPaths) const {
   return sceneBytes_ + sizeof(gpu::RenderParams) + maxPaths * kVulkanBytesPerPath + sizeof(gpu::QueueCounters);

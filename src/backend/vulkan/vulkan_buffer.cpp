@@ -7,6 +7,7 @@
 
 #include "backend/vulkan/vk_check.h"
 #include "backend/vulkan/vulkan_context.h"
+#include "core/huge_pages.h"
 
 namespace wp {
 
@@ -36,6 +37,12 @@ VulkanBuffer::VulkanBuffer(VulkanContext& context, VkDeviceSize size, VkBufferUs
   memoryFlags_ = context.memoryProperties.memoryTypes[alloc.memoryTypeIndex].propertyFlags;
   if (hostVisible) {
     VK_CHECK(vkMapMemory(context.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  }
+  // On a CPU device the memory is a fresh block of the process's heap that the first upload or
+  // stage touches page by page: huge pages make that one fault per 2 MiB (core/huge_pages.h;
+  // the instanced scene's upload on lavapipe 0.77 -> 0.45 s).
+  if (context.onCpu() && hasMemory(VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)) {
+    adviseHugePages(mapInPlace(), size_);
   }
 }
 

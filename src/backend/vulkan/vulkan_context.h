@@ -46,6 +46,9 @@ public:
   // that also has `preferred`. Throws when none exists.
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred = 0) const;
 
+  // Whether the device is the CPU itself (lavapipe): its device memory is the process's own.
+  bool onCpu() const { return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+
   // Records commands with `record` into a one-time command buffer, submits it and waits.
   template <typename Record>
   void runOnce(Record&& record) {

@@ -1,0 +1,21 @@
+// Transparent huge pages for large blocks of the process's memory.
+#include "core/huge_pages.h"
+
+#include <sys/mman.h>
+
+#include <cstdint>
+
+namespace wp {
+
+void adviseHugePages(void* data, std::size_t bytes) {
+  const auto begin = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t first = (begin + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
+  const std::uintptr_t end = (begin + bytes) & ~(kHugePageBytes - 1);
+  if (data == nullptr || bytes < kHugePageBytes || end <= first) {
+    return;
+  }
+  // The result is ignored on purpose: a refusal leaves the block as it was, in 4 KiB pages.
+  (void)madvise(reinterpret_cast<void*>(first), end - first, MADV_HUGEPAGE);
+}
+
+}  // namespace wp
