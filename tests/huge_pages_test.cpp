@@ -6,11 +6,16 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "backend/opencl/cl_check.h"
+#include "backend/opencl/opencl_buffer.h"
+#include "backend/opencl/opencl_context.h"
 #include "backend/vulkan/vulkan_buffer.h"
 #include "backend/vulkan/vulkan_context.h"
 #include "core/huge_pages.h"
@@ -120,6 +125,26 @@ TEST(VulkanBufferOnTheCpu, AsksForHugePagesForItsMemory) {
     });
     EXPECT_EQ(back, bytes);
   }
+}
+
+TEST(OpenClBufferOnTheCpu, IsHugePagesOfOursThatTheDriverUsesInPlace) {
+  // PoCL's own allocation is touched page by page; CL_MEM_USE_HOST_PTR has it work in ours.
+  OpenClContext context(-1);
+  ASSERT_EQ(context.device.type, "CPU") << "this test needs PoCL as the OpenCL device (got "
+                                        << context.device.name << ")";
+  std::vector<uint32_t> words(4 * kHugePageBytes / sizeof(uint32_t) - 3);
+  for (size_t i = 0; i < words.size(); ++i) words[i] = uint32_t(i * 2654435761u);
+  const size_t bytes = words.size() * sizeof(uint32_t);
+  OpenClBuffer buffer(context.context, CL_MEM_READ_WRITE, bytes, words.data(), OpenClMemory::hostHugePages);
+  cl_int result = CL_SUCCESS;
+  void* mapped = clEnqueueMapBuffer(context.queue, buffer.handle(), CL_TRUE, CL_MAP_READ, 0, bytes, 0, nullptr,
+                                    nullptr, &result);
+  CL_CHECK(result);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(mapped) % kHugePageBytes, 0u) << "the driver copied the block";
+  EXPECT_TRUE(mappingOf(mapped).hugePagesAdvised);
+  EXPECT_EQ(std::memcmp(mapped, words.data(), bytes), 0);
+  CL_CHECK(clEnqueueUnmapMemObject(context.queue, buffer.handle(), mapped, 0, nullptr, nullptr));
+  CL_CHECK(clFinish(context.queue));
 }
 
 }  // namespace

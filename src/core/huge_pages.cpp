@@ -4,6 +4,7 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <cstdlib>
 
 namespace wp {
 
@@ -16,6 +17,16 @@ void adviseHugePages(void* data, std::size_t bytes) {
   }
   // The result is ignored on purpose: a refusal leaves the block as it was, in 4 KiB pages.
   (void)madvise(reinterpret_cast<void*>(first), end - first, MADV_HUGEPAGE);
+}
+
+void* allocateHugePages(std::size_t bytes) {
+  const std::size_t rounded = (bytes + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
+  if (rounded < bytes) {  // the rounding overflowed
+    return nullptr;
+  }
+  void* block = std::aligned_alloc(kHugePageBytes, rounded);
+  adviseHugePages(block, rounded);
+  return block;
 }
 
 }  // namespace wp

@@ -21,4 +21,11 @@ inline constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
 // as a GPU driver's mapping) nothing changes. Pages already touched keep their 4 KiB.
 void adviseHugePages(void* data, std::size_t bytes);
 
+// A block of at least `bytes`, aligned to a huge page and rounded up to whole ones, advised
+// before anything touches it, so that all of it can be huge pages (a block malloc hands out
+// starts 16 bytes into its mapping, and the partial huge pages at either end would stay in
+// 4 KiB pages). Released with std::free; nullptr when there is no memory. The head that the
+// alignment skips is address space only, never touched.
+void* allocateHugePages(std::size_t bytes);
+
 }  // namespace wp

@@ -4,9 +4,10 @@
 // touches them, so that a block of 64 MiB costs 32 page faults instead of 16,384.
 //
 // glibc's malloc hands out blocks this large from fresh mmap'ed or brk'ed memory that nothing
-// has touched yet, which is when the advice counts; free() takes them back as any other. Debian's glibc has the same behaviour
-// behind a tunable (GLIBC_TUNABLES=glibc.malloc.hugetlb=1), but tunables are read from the
-// environment at start-up, before main, so an executable cannot set its own.
+// has touched yet, which is when the advice counts; free() takes them back as any other.
+// Debian's glibc advises its own blocks behind a tunable (GLIBC_TUNABLES=
+// glibc.malloc.hugetlb=1), but tunables are read from the environment before main, so an
+// executable cannot set its own.
 //
 // Under AddressSanitizer its own operator new stays: it checks new against delete.
 #include <cstdlib>
@@ -21,21 +22,8 @@ namespace {
 // Smaller blocks come from memory malloc has touched before, or are too small to matter.
 constexpr std::size_t kLargeBlockBytes = wp::kHugePageBytes;
 
-// A large block is aligned to a huge page and its size rounded up to whole ones, so that all
-// of it can be huge pages: malloc's own blocks start 16 bytes into a fresh mapping, and the
-// partial huge pages at either end stayed in 4 KiB pages (a fifth of the faults that were
-// left). The head that the alignment skips is address space only, never touched.
 void* allocate(std::size_t bytes) {
-  if (bytes < kLargeBlockBytes) {
-    return std::malloc(bytes);
-  }
-  const std::size_t rounded = (bytes + wp::kHugePageBytes - 1) & ~(wp::kHugePageBytes - 1);
-  if (rounded < bytes) {  // the rounding overflowed
-    return nullptr;
-  }
-  void* block = std::aligned_alloc(wp::kHugePageBytes, rounded);
-  wp::adviseHugePages(block, rounded);
-  return block;
+  return bytes < kLargeBlockBytes ? std::malloc(bytes) : wp::allocateHugePages(bytes);
 }
 
 }  // namespace

@@ -119,6 +119,10 @@ uint64_t OpenClBackend::maxAccumulationPixels(uint32_t maxPaths) const {
   return std::min(limits_.writable.bytes / kAccumulationBytesPerPixel, byMemory);
 }
 
+OpenClBuffer OpenClBackend::newBuffer(cl_mem_flags flags, uint64_t size, const void* data) const {
+  return OpenClBuffer(context_->context, flags, size, data, onCpu() ? OpenClMemory::hostHugePages : OpenClMemory::driver);
+}
+
 void OpenClBackend::bind(uint32_t binding, const OpenClBuffer& buffer) {
   for (cl_kernel kernel : variant_->kernels) {
     CL_CHECK(clSetKernelArg(kernel, binding, sizeof(cl_mem), buffer.argument()));
@@ -131,11 +135,10 @@ void OpenClBackend::loadScene(const GpuScene& scene) {
   // picked by configure, which knows the render's light selection too: one build, not two.
   motion_ = scene.moving();
   sceneFeatures_ = scene.features();
-  cl_context context = context_->context;
   const auto arrays = sceneArrays(scene);
   const uint64_t bytes = checkSceneFits(limits_, arrays);
   for (size_t i = 0; i < arrays.size(); ++i) {
-    sceneBuffers_[i] = OpenClBuffer(context, CL_MEM_READ_ONLY, arrays[i].bytes, arrays[i].data);
+    sceneBuffers_[i] = newBuffer(CL_MEM_READ_ONLY, arrays[i].bytes, arrays[i].data);
   }
   sceneBytes_ = bytes;
 }
@@ -153,18 +156,17 @@ void OpenClBackend::configure(const gpu::RenderParams& params) {
   clFinish(context_->queue);
   solidAngleSelection_ = params.lightSelection == WP_LIGHT_SELECTION_SOLID_ANGLE;
   useVariant();
-  cl_context context = context_->context;
-  params_ = OpenClBuffer(context, CL_MEM_READ_ONLY, sizeof(params), &params);
+  params_ = newBuffer(CL_MEM_READ_ONLY, sizeof(params), &params);
   if (rays_.handle() == nullptr || rays_.size() < rayBytes) {
-    rays_ = OpenClBuffer(context, CL_MEM_READ_WRITE, rayBytes);
-    hits_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::HitRecord));
-    shadowRays_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::ShadowRay));
-    pathRadiance_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(glm::vec4));
-    pathFeatures_ = OpenClBuffer(context, CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::PathFeatures));
-    counters_ = OpenClBuffer(context, CL_MEM_READ_WRITE, sizeof(gpu::QueueCounters));
+    rays_ = newBuffer(CL_MEM_READ_WRITE, rayBytes);
+    hits_ = newBuffer(CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::HitRecord));
+    shadowRays_ = newBuffer(CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::ShadowRay));
+    pathRadiance_ = newBuffer(CL_MEM_READ_WRITE, maxPaths * sizeof(glm::vec4));
+    pathFeatures_ = newBuffer(CL_MEM_READ_WRITE, maxPaths * sizeof(gpu::PathFeatures));
+    counters_ = newBuffer(CL_MEM_READ_WRITE, sizeof(gpu::QueueCounters));
   }
   pixelCount_ = params.pixelCount;
-  accumulation_ = OpenClBuffer(context, CL_MEM_READ_WRITE, accumulationBytes);
+  accumulation_ = newBuffer(CL_MEM_READ_WRITE, accumulationBytes);
   const float zero = 0.0f;
   CL_CHECK(clEnqueueFillBuffer(context_->queue, accumulation_.handle(), &zero, sizeof(zero), 0,
                                accumulation_.size(), 0, nullptr, nullptr));

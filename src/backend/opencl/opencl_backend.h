@@ -68,6 +68,9 @@ private:
   // (variantOptions), building them the first time.
   void useVariant();
   std::string variantOptions() const;
+  // A buffer in this device's memory: on a CPU device, huge pages of wavepath's own
+  // (OpenClMemory); `data`, if given, is `size` bytes copied in.
+  OpenClBuffer newBuffer(cl_mem_flags flags, uint64_t size, const void* data = nullptr) const;
   // Sets kernel argument `binding` (binding_table.h) of every kernel of the current variant to `buffer`.
   void bind(uint32_t binding, const OpenClBuffer& buffer);
   // Work items for a launch sized by the dispatch arguments at counters word `word`.

@@ -2,10 +2,14 @@
 #include "backend/opencl/opencl_buffer.h"
 
 #include <array>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 #include <utility>
 
 #include "backend/opencl/cl_check.h"
+#include "core/error.h"
+#include "core/huge_pages.h"
 
 namespace wp {
 
@@ -14,10 +18,28 @@ namespace {
 constexpr uint64_t kMinimumSize = 16;
 }  // namespace
 
-OpenClBuffer::OpenClBuffer(cl_context context, cl_mem_flags flags, uint64_t size, const void* data)
+OpenClBuffer::OpenClBuffer(cl_context context, cl_mem_flags flags, uint64_t size, const void* data,
+                           OpenClMemory memory)
     : size_(size < kMinimumSize ? kMinimumSize : size) {
   cl_int result = CL_SUCCESS;
   bool copy = data != nullptr && size > 0;
+  if (memory == OpenClMemory::hostHugePages && size_ >= kHugePageBytes) {
+    void* block = allocateHugePages(size_);
+    if (block == nullptr) {
+      throw Error("out of host memory for a buffer of " + std::to_string(size_) + " bytes");
+    }
+    if (copy) {
+      std::memcpy(block, data, size);
+    }
+    mem_ = clCreateBuffer(context, flags | CL_MEM_USE_HOST_PTR, size_, block, &result);
+    if (result != CL_SUCCESS) {
+      std::free(block);
+      CL_CHECK(result);
+    }
+    CL_CHECK(clSetMemObjectDestructorCallback(
+        mem_, [](cl_mem, void* released) { std::free(released); }, block));
+    return;
+  }
   // CL_MEM_COPY_HOST_PTR copies the whole buffer: a placeholder larger than the data is
   // filled from a zeroed copy, never from past the end of `data`.
   std::array<unsigned char, kMinimumSize> padded{};
