@@ -15,7 +15,16 @@
 
 #include "core/huge_pages.h"
 
-#if !defined(__SANITIZE_ADDRESS__)
+// GCC says so with __SANITIZE_ADDRESS__, clang 14 only through __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define WP_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define WP_ADDRESS_SANITIZER 1
+#endif
+#endif
+
+#if !defined(WP_ADDRESS_SANITIZER)
 
 namespace {
 
