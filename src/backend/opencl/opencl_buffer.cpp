@@ -4,12 +4,12 @@
 #include <array>
 #include <cstdlib>
 #include <cstring>
-#include <string>
 #include <utility>
 
 #include "backend/opencl/cl_check.h"
 #include "core/error.h"
 #include "core/huge_pages.h"
+#include "render/device_limits.h"
 
 namespace wp {
 
@@ -26,18 +26,24 @@ OpenClBuffer::OpenClBuffer(cl_context context, cl_mem_flags flags, uint64_t size
   if (memory == OpenClMemory::hostHugePages && size_ >= kHugePageBytes) {
     void* block = allocateHugePages(size_);
     if (block == nullptr) {
-      throw Error("out of host memory for a buffer of " + std::to_string(size_) + " bytes");
+      throw Error("out of memory for an OpenCL buffer of " + byteSize(size_) +
+                  "; render fewer pixels or paths at once (--max-paths), or a smaller scene");
     }
     if (copy) {
       std::memcpy(block, data, size);
     }
     mem_ = clCreateBuffer(context, flags | CL_MEM_USE_HOST_PTR, size_, block, &result);
+    if (result == CL_SUCCESS) {
+      result = clSetMemObjectDestructorCallback(
+          mem_, [](cl_mem, void* released) { std::free(released); }, block);
+      if (result != CL_SUCCESS) {  // nothing would free the block: release both here
+        clReleaseMemObject(std::exchange(mem_, nullptr));
+      }
+    }
     if (result != CL_SUCCESS) {
       std::free(block);
       CL_CHECK(result);
     }
-    CL_CHECK(clSetMemObjectDestructorCallback(
-        mem_, [](cl_mem, void* released) { std::free(released); }, block));
     return;
   }
   // CL_MEM_COPY_HOST_PTR copies the whole buffer: a placeholder larger than the data is
