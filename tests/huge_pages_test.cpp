@@ -39,7 +39,7 @@ Mapping mappingOf(const void* address) {
     uintptr_t begin = 0, end = 0;
     char dash = 0;
     std::istringstream header(line);
-    if (header >> std::hex >> begin >> dash >> end && dash == '-' && line.find(':') > line.find(' ')) {
+    if (header >> std::hex >> begin >> dash >> end && dash == '-') {  // a mapping's first line
       if (found) break;
       current = {begin, end, false};
       found = at >= begin && at < end;
@@ -63,8 +63,7 @@ struct AnonymousMemory {
 };
 
 char* firstHugePageIn(char* data) {
-  const auto at = reinterpret_cast<uintptr_t>(data);
-  return reinterpret_cast<char*>((at + kHugePageBytes - 1) & ~(kHugePageBytes - 1));
+  return reinterpret_cast<char*>(roundUpToHugePage(reinterpret_cast<uintptr_t>(data)));
 }
 
 TEST(HugePages, AreAdvisedForTheWholeHugePagesInsideABlockAndNoWhereElse) {

@@ -3,15 +3,14 @@
 
 #include <sys/mman.h>
 
-#include <cstdint>
 #include <cstdlib>
 
 namespace wp {
 
 void adviseHugePages(void* data, std::size_t bytes) {
   const auto begin = reinterpret_cast<std::uintptr_t>(data);
-  const std::uintptr_t first = (begin + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
-  const std::uintptr_t end = (begin + bytes) & ~(kHugePageBytes - 1);
+  const std::uintptr_t first = roundUpToHugePage(begin);
+  const std::uintptr_t end = roundDownToHugePage(begin + bytes);
   if (data == nullptr || bytes < kHugePageBytes || end <= first) {
     return;
   }
@@ -20,7 +19,7 @@ void adviseHugePages(void* data, std::size_t bytes) {
 }
 
 void* allocateHugePages(std::size_t bytes) {
-  const std::size_t rounded = (bytes + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
+  const std::size_t rounded = roundUpToHugePage(bytes);
   if (rounded < bytes) {  // the rounding overflowed
     return nullptr;
   }

@@ -9,10 +9,18 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace wp {
 
 inline constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
+
+// `value` (a size or an address) rounded down and up to a multiple of kHugePageBytes; up
+// wraps to 0 past the largest multiple.
+constexpr std::uintptr_t roundDownToHugePage(std::uintptr_t value) { return value & ~(kHugePageBytes - 1); }
+constexpr std::uintptr_t roundUpToHugePage(std::uintptr_t value) {
+  return roundDownToHugePage(value + kHugePageBytes - 1);
+}
 
 // Asks the kernel to back the whole huge pages inside [data, data + bytes) with huge pages
 // when they are first touched (madvise MADV_HUGEPAGE); the pages at either end that the block
