@@ -129,6 +129,30 @@ TEST(SceneFeatures, SkyMapWhereTheSkyHasMoreThanOneTexel) {
   EXPECT_FALSE(packScene(scene).features().skyMap) << "--sky-color: one texel";
 }
 
+// A spot lamp in the project's box, under its ceiling light, aimed at the floor: the box then
+// has lights of both kinds, emissive triangles and a punctual one.
+Scene boxWithSpotLamp() {
+  Scene scene = assetScene("cornell-box.gltf");
+  PunctualLight lamp;
+  lamp.kind = PunctualLight::Kind::Spot;
+  lamp.intensity = glm::vec3(0.3f);
+  lamp.outerConeAngle = 0.6f;
+  lamp.innerConeAngle = 0.3f;
+  // Its -Z turned down (-y), from above the middle of the floor (the box spans 0.55 on each axis).
+  lamp.lightToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(0.28f, 0.45f, 0.28f)) *
+                      glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+  scene.lights.push_back(lamp);
+  return scene;
+}
+
+TEST(SceneFeatures, PunctualWhereTheSceneHasPunctualLights) {
+  EXPECT_TRUE(packedAsset("lamps.gltf").features().punctual);
+  EXPECT_FALSE(packedAsset("cornell-box.gltf").features().punctual) << "an emissive quad alone";
+  const SceneFeatures both = packScene(boxWithSpotLamp()).features();
+  EXPECT_TRUE(both.punctual);
+  EXPECT_TRUE(both.emissive);
+}
+
 TEST(SceneFeatures, InstancedWhereTheTopLevelsRootIsANode) {
   // The project's box as the renderer packs it: every mesh placed once, baked into one
   // instance, whose leaf the traversal starts from.
@@ -220,26 +244,31 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // metal lobe of weight 0, glass of transmission 0, the sky's sampling at probability 0,
   // emission nothing has, the walk of a top level that holds one instance, the planes' loop
   // of a scene without planes, the spheres' intersection and surface in a scene of meshes, the
-  // sky map's coordinates under a uniform sky). The project's box turns the material features
-  // off (its materials are ideal diffuse), its top level holds one instance and it has no
-  // planes, materials.gltf keeps most, sky-spheres.gltf samples its sky map among spheres and
-  // planes, and lamps.gltf without metalness keeps glTF's BRDF without its metal lobe; between
-  // them each of the constants below is on in one case and off in another. The light
-  // selection is the render's: power everywhere but in the last case, which selects
-  // lamps.gltf's lights by solid angle (its constant on).
+  // sky map's coordinates under a uniform sky, the punctual lights' sampling in a scene lit by
+  // emitters alone). The project's box turns the material features off (its materials are
+  // ideal diffuse), its top level holds one instance and it has no planes and no punctual
+  // lights, materials.gltf keeps most, sky-spheres.gltf samples its sky map among spheres and
+  // planes, lamps.gltf without metalness keeps glTF's BRDF without its metal lobe and has
+  // punctual lights alone, and the box with a spot lamp has lights of both kinds; between them
+  // each of the constants below is on in one case and off in another. The light selection is
+  // the render's: power everywhere but in two cases, which select lamps.gltf's lights and the
+  // box's two kinds by solid angle (its constant on).
   struct Case {
     const char* asset;
     bool withoutMetal;
     bool solidAngle = false;
     bool baked = false;  // its meshes placed once baked into one instance, as the renderer does
     bool skyMap = false;  // lit by the assets' sky map instead of its own sky
+    bool spotLamp = false;  // the project's box with a spot lamp (boxWithSpotLamp)
   };
   std::vector<SceneFeatures> covered;
   for (const Case c : {Case{"cornell-box.gltf", false, false, true}, Case{"materials.gltf", false},
                        Case{"sky-spheres.gltf", false, false, false, true}, Case{"lamps.gltf", true},
-                       Case{"lamps.gltf", false, true}}) {
-    SCOPED_TRACE(c.asset);
-    Scene scene = assetScene(c.asset);
+                       Case{"lamps.gltf", false, true},
+                       Case{"cornell-box.gltf", false, false, false, false, true},
+                       Case{"cornell-box.gltf", false, true, false, false, true}}) {
+    SCOPED_TRACE(std::string(c.asset) + (c.spotLamp ? " with a spot lamp" : "") + (c.solidAngle ? ", by solid angle" : ""));
+    Scene scene = c.spotLamp ? boxWithSpotLamp() : assetScene(c.asset);
     if (c.baked) scene = bakeSingleUseMeshes(scene);
     if (c.skyMap) scene.sky = assetSkyMap();
     GpuScene packed = packScene(scene);
@@ -266,6 +295,7 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   EXPECT_TRUE(both(&SceneFeatures::planes));
   EXPECT_TRUE(both(&SceneFeatures::spheres));
   EXPECT_TRUE(both(&SceneFeatures::skyMap));
+  EXPECT_TRUE(both(&SceneFeatures::punctual));
 }
 
 // A scene of deep trees under a lamp: a soup of 4000 random triangles, whose bottom level

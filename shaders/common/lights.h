@@ -233,7 +233,8 @@ WP_FN float triangleSolidAngle(vec3 a, vec3 b, vec3 c) {
 // light shows its back.
 WP_FN float solidAngleWeight(GpuLight light, vec3 position, float time) {
   uint kind = lightKind(light);
-  if (!WP_SCENE_EMISSIVE || kind != WP_LIGHT_TRIANGLE) {
+  // (Vulkan and OpenCL compile a kind's code only into scenes that have it: WP_SCENE_PUNCTUAL, WP_SCENE_EMISSIVE.)
+  if (WP_SCENE_PUNCTUAL && (!WP_SCENE_EMISSIVE || kind != WP_LIGHT_TRIANGLE)) {
     LightSample s = samplePunctualLight(light, position, time);
     return s.pdf > 0.0f ? luminance(s.radiance) : 0.0f;
   }
@@ -309,10 +310,14 @@ WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection
     return noLightSample();
   }
   GpuLight light = WP_LOAD(lights, choice.index);
-  // (WP_SCENE_EMISSIVE false: no triangle lights, and Vulkan and OpenCL compile their sampling away.)
-  LightSample s = WP_SCENE_EMISSIVE && lightKind(light) == WP_LIGHT_TRIANGLE
-                      ? sampleLightTriangle(WP_BUFFERS_ARG light, position, make_vec2(u.y, u.z))
-                      : samplePunctualLight(light, position, time);
+  // (WP_SCENE_EMISSIVE false: no triangle lights; WP_SCENE_PUNCTUAL false: no punctual ones.
+  // Vulkan and OpenCL compile away the sampling of a kind the scene lacks.)
+  LightSample s = noLightSample();
+  if (WP_SCENE_EMISSIVE && (!WP_SCENE_PUNCTUAL || lightKind(light) == WP_LIGHT_TRIANGLE)) {
+    s = sampleLightTriangle(WP_BUFFERS_ARG light, position, make_vec2(u.y, u.z));
+  } else if (WP_SCENE_PUNCTUAL) {
+    s = samplePunctualLight(light, position, time);
+  }
   s.pdf *= choice.probability;
   return s;
 }

@@ -80,6 +80,9 @@ typedef uint4 uvec4;
 #ifndef WP_SCENE_SKY_MAP
 #define WP_SCENE_SKY_MAP true
 #endif
+#ifndef WP_SCENE_PUNCTUAL
+#define WP_SCENE_PUNCTUAL true
+#endif
 #ifndef WP_RENDER_SOLID_ANGLE_SELECTION
 #define WP_RENDER_SOLID_ANGLE_SELECTION true
 #endif

@@ -54,6 +54,7 @@ inline thread_local DeepestStacks deepestStacks;
 #define WP_SCENE_PLANES true
 #define WP_SCENE_SPHERES true
 #define WP_SCENE_SKY_MAP true
+#define WP_SCENE_PUNCTUAL true
 #define WP_RENDER_SOLID_ANGLE_SELECTION true
 #define WP_STRUCT(name) struct name {
 #define WP_STRUCT_END(name) };

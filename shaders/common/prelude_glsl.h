@@ -71,6 +71,9 @@ layout(constant_id = 15) const bool WP_SCENE_PLANES = true;
 // map's two arctangents.
 layout(constant_id = 16) const bool WP_SCENE_SPHERES = true;
 layout(constant_id = 17) const bool WP_SCENE_SKY_MAP = true;
+// Whether the scene has punctual lights (KHR_lights_punctual, lights.h): a light sample ran
+// their sampling beside the emissive triangle's in a scene lit by triangles alone.
+layout(constant_id = 18) const bool WP_SCENE_PUNCTUAL = true;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

@@ -501,6 +501,7 @@ SceneFeatures GpuScene::features() const {
   f.instanced = gpu::entryCount(topLevelEntry()) == 0;
   f.planes = !planes.empty();
   f.skyMap = uint64_t(sky.width) * sky.height > 1;
+  f.punctual = punctualLightCount > 0;
   // Only the materials some surface has: a material nothing uses would only cost code.
   std::vector<bool> used(materials.size(), false);
   auto use = [&](uint32_t material) {
@@ -556,7 +557,8 @@ std::vector<std::pair<const char*, bool>> SceneFeatures::macros() const {
           {"WP_SCENE_MICROFACET", microfacet},    {"WP_SCENE_METALLIC", metallic},
           {"WP_SCENE_EMISSIVE", emissive},        {"WP_SCENE_SKY_SAMPLED", skySampled},
           {"WP_SCENE_INSTANCED", instanced},      {"WP_SCENE_PLANES", planes},
-          {"WP_SCENE_SPHERES", spheres},          {"WP_SCENE_SKY_MAP", skyMap}};
+          {"WP_SCENE_SPHERES", spheres},          {"WP_SCENE_SKY_MAP", skyMap},
+          {"WP_SCENE_PUNCTUAL", punctual}};
 }
 
 SceneFeatures SceneFeatures::everything() {
@@ -570,6 +572,7 @@ SceneFeatures SceneFeatures::everything() {
   f.planes = true;
   f.spheres = true;
   f.skyMap = true;
+  f.punctual = true;
   return f.withNeeds(WP_NEEDS_MICROFACET | WP_NEEDS_LAYERS | WP_NEEDS_TRANSMISSION | WP_NEEDS_METAL);
 }
 

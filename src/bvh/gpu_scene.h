@@ -42,6 +42,7 @@ struct SceneFeatures {
   bool planes = false;   // the scene has planes (traverse.h, surface.h)
   bool spheres = false;  // the scene has spheres (traverse.h, surface.h)
   bool skyMap = false;   // the sky is a map of more than one texel, not uniform (environment.h)
+  bool punctual = false;  // the scene has punctual lights (KHR_lights_punctual, lights.h)
   // Both shade classes (layout.h): materials that need glTF's BRDF and materials that need
   // none of it. Vulkan then shades each class with a pipeline of its own (shade.comp).
   bool hasBothShadeClasses() const { return diffuse && microfacet; }

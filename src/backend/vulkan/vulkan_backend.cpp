@@ -212,13 +212,14 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   info.stage.pName = "main";
   // The constants in constant_id order, each 32 bits (VkBool32 or uint): the features of
   // prelude_glsl.h and the render's light selection, shade.comp's class and split, then the
-  // traversal's stacks, top level, planes, spheres and the sky's map (a stage without some of
-  // them ignores them, which Vulkan allows).
-  const std::array<uint32_t, 18> constants = {
+  // traversal's stacks, top level, planes, spheres, the sky's map and punctual lights (a stage
+  // without some of them ignores them, which Vulkan allows).
+  const std::array<uint32_t, 19> constants = {
       features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
       features.metallic,    features.emissive, features.skySampled, solidAngleSelection_,  shadeClass,
       splitShade_,          stacks_.inWorkgroupMemory, stacks_.topLevelEntries, stacks_.bottomLevelEntries,
-      features.instanced,   features.planes,           features.spheres,        features.skyMap};
+      features.instanced,   features.planes,           features.spheres,        features.skyMap,
+      features.punctual};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)};
