@@ -35,6 +35,12 @@ WP_FN LightSample noLightSample() {
 // ---- What a GpuLight holds (layout.h) ----------------------------------------------------
 
 WP_FN uint lightKind(GpuLight light) { return light.info.y & WP_LIGHT_KIND_MASK; }
+// Whether `light` is an emissive triangle rather than a punctual light. In a scene with lights
+// of one kind (WP_SCENE_EMISSIVE, WP_SCENE_PUNCTUAL) Vulkan and OpenCL know the answer when they
+// compile, and the other kind's code compiles away (lavapipe would run both sides).
+WP_FN bool isTriangleLight(GpuLight light) {
+  return WP_SCENE_EMISSIVE && (!WP_SCENE_PUNCTUAL || lightKind(light) == WP_LIGHT_TRIANGLE);
+}
 WP_FN bool lightIsDoubleSided(GpuLight light) { return (light.info.y & WP_LIGHT_DOUBLE_SIDED) != 0u; }
 WP_FN float lightSelectionWeight(GpuLight light) { return light.emission.w; }
 WP_FN float lightPowerProbability(GpuLight light) { return light.edge1.w; }
@@ -232,9 +238,7 @@ WP_FN float triangleSolidAngle(vec3 a, vec3 b, vec3 c) {
 // Selection weight of `light` from `position` at shutter time `time`: 0 where a one-sided
 // light shows its back.
 WP_FN float solidAngleWeight(GpuLight light, vec3 position, float time) {
-  uint kind = lightKind(light);
-  // (Vulkan and OpenCL compile a kind's code only into scenes that have it: WP_SCENE_PUNCTUAL, WP_SCENE_EMISSIVE.)
-  if (WP_SCENE_PUNCTUAL && (!WP_SCENE_EMISSIVE || kind != WP_LIGHT_TRIANGLE)) {
+  if (!isTriangleLight(light)) {
     LightSample s = samplePunctualLight(light, position, time);
     return s.pdf > 0.0f ? luminance(s.radiance) : 0.0f;
   }
@@ -310,10 +314,10 @@ WP_FN_INLINED LightSample sampleLight(WP_BUFFERS uint lightCount, uint selection
     return noLightSample();
   }
   GpuLight light = WP_LOAD(lights, choice.index);
-  // (WP_SCENE_EMISSIVE false: no triangle lights; WP_SCENE_PUNCTUAL false: no punctual ones.
-  // Vulkan and OpenCL compile away the sampling of a kind the scene lacks.)
+  // (A scene with neither kind of light samples none: WP_SCENE_PUNCTUAL false compiles the
+  // punctual sampling away there too.)
   LightSample s = noLightSample();
-  if (WP_SCENE_EMISSIVE && (!WP_SCENE_PUNCTUAL || lightKind(light) == WP_LIGHT_TRIANGLE)) {
+  if (isTriangleLight(light)) {
     s = sampleLightTriangle(WP_BUFFERS_ARG light, position, make_vec2(u.y, u.z));
   } else if (WP_SCENE_PUNCTUAL) {
     s = samplePunctualLight(light, position, time);
