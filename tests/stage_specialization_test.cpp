@@ -255,19 +255,21 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // box's two kinds by solid angle (its constant on).
   struct Case {
     const char* asset;
-    bool withoutMetal;
+    bool withoutMetal = false;
     bool solidAngle = false;
     bool baked = false;  // its meshes placed once baked into one instance, as the renderer does
     bool skyMap = false;  // lit by the assets' sky map instead of its own sky
     bool spotLamp = false;  // the project's box with a spot lamp (boxWithSpotLamp)
   };
   std::vector<SceneFeatures> covered;
-  for (const Case c : {Case{"cornell-box.gltf", false, false, true}, Case{"materials.gltf", false},
-                       Case{"sky-spheres.gltf", false, false, false, true}, Case{"lamps.gltf", true},
-                       Case{"lamps.gltf", false, true},
-                       Case{"cornell-box.gltf", false, false, false, false, true},
-                       Case{"cornell-box.gltf", false, true, false, false, true}}) {
-    SCOPED_TRACE(std::string(c.asset) + (c.spotLamp ? " with a spot lamp" : "") + (c.solidAngle ? ", by solid angle" : ""));
+  for (const Case c : {Case{.asset = "cornell-box.gltf", .baked = true}, Case{.asset = "materials.gltf"},
+                       Case{.asset = "sky-spheres.gltf", .skyMap = true},
+                       Case{.asset = "lamps.gltf", .withoutMetal = true},
+                       Case{.asset = "lamps.gltf", .solidAngle = true},
+                       Case{.asset = "cornell-box.gltf", .spotLamp = true},
+                       Case{.asset = "cornell-box.gltf", .solidAngle = true, .spotLamp = true}}) {
+    SCOPED_TRACE(std::string(c.asset) + (c.spotLamp ? " with a spot lamp" : "") +
+                 (c.solidAngle ? ", by solid angle" : ""));
     Scene scene = c.spotLamp ? boxWithSpotLamp() : assetScene(c.asset);
     if (c.baked) scene = bakeSingleUseMeshes(scene);
     if (c.skyMap) scene.sky = assetSkyMap();
