@@ -29,7 +29,7 @@
 // gather where a storage-buffer load is a per-lane scalar loop, and on GPUs it goes through
 // the texture cache.
 #define WP_BINDINGS(X)                                                            \
-  X(params, 0, RenderParams, 13, NONE, UNIFORM, ALL)                              \
+  X(params, 0, RenderParams, 14, NONE, UNIFORM, ALL)                              \
   X(nodes, 1, BvhNode, 8, RECORD, TEXELS, ALL)                                    \
   X(triangles, 2, GpuTriangle, 4, RECORD, TEXELS, ALL)                            \
   X(instances, 3, GpuInstance, 4, RECORD, TEXELS, ALL)                            \

@@ -68,7 +68,7 @@ WP_FN ShadeResult shadeMiss(WP_BUFFERS RenderParams params, PathRay ray) {
   if (rayBounce(ray) > 0u) {
     r.radiance = clampedContribution(params, r.radiance);
   }
-  if (!rayFeaturesTaken(ray)) {
+  if (recordsFeaturePasses(params) && !rayFeaturesTaken(ray)) {
     // The sky's albedo is its radiance clamped to [0, 1], so that a denoiser sees the edges
     // of what stands against it; it has no normal.
     vec3 skyAlbedo = clamp(sky, make_vec3(0.0f, 0.0f, 0.0f), make_vec3(1.0f, 1.0f, 1.0f));
@@ -324,8 +324,9 @@ WP_FN_INLINED float russianRoulette(RenderParams params, uint bounce, vec3 throu
 //
 // From the last vertex a ray is still traced, only to collect emission the light sample
 // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
-// with NEE alone, what only a delta lobe reaches; and the feature passes of a path whose
-// vertices so far were all perfectly specular (what a mirror shows, shadeHit). Where nothing
+// with NEE alone, what only a delta lobe reaches; and, where the render records them, the
+// feature passes of a path whose vertices so far were all perfectly specular (what a mirror
+// shows, shadeHit). Where nothing
 // a ray can hit emits (params.emissionHittable 0: lamps alone, a black sky) and the features
 // are taken, that ray would add exactly nothing, and it is not traced: the image and its
 // passes are the same, without the extend and shade work (40% of the extension rays of a
@@ -336,7 +337,7 @@ WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuM
   MaterialSample bs = sampleBsdf(m, v.woLocal, draws.bsdf, params.bsdfFlags);
   bool isDelta = (bs.flags & WP_SAMPLE_DELTA) != 0u;
   bool collectsEmission = params.emissionHittable != 0u && (params.mode != WP_MODE_NEE || isDelta);
-  bool featuresPending = (v.rayFlags & WP_RAY_FEATURES_TAKEN) == 0u;
+  bool featuresPending = recordsFeaturePasses(params) && (v.rayFlags & WP_RAY_FEATURES_TAKEN) == 0u;
   if (v.bounce < params.maxBounces || collectsEmission || featuresPending) {
     vec3 nextThroughput = v.throughput * bs.weight;
     float survival = russianRoulette(params, v.bounce, nextThroughput, draws.roulette);
@@ -397,9 +398,10 @@ WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, 
   // smooth mirrors and glass they are those of what the path sees in them), and the depth of
   // the camera ray's hit. The albedo is the base colour, textured: a plastic's diffuse
   // colour, a metal's reflectivity, a glass's tint. The normal is the shading normal (normal
-  // map included) turned towards the ray.
-  bool takesFeatures = !rayFeaturesTaken(ray) && !bsdfIsPerfectlySpecular(m);
-  if (takesFeatures || bounce == 0u) {
+  // map included) turned towards the ray. Only a render that keeps them records them.
+  bool records = recordsFeaturePasses(params);
+  bool takesFeatures = records && !rayFeaturesTaken(ray) && !bsdfIsPerfectlySpecular(m);
+  if (takesFeatures || (records && bounce == 0u)) {
     vec3 n = dot(s.normal, wo) < 0.0f ? -s.shadingNormal : s.shadingNormal;
     vec3 zero = make_vec3(0.0f, 0.0f, 0.0f);
     r.features = makePathFeatures(takesFeatures ? albedoOf(m) : zero, takesFeatures ? n : zero,

@@ -501,7 +501,19 @@ WP_STRUCT(RenderParams)
   // by lamps alone under a black sky: most glTF files from Blender) spares the last vertex's
   // ray, which could only find emission (sampleContinuation, integrator.h).
   uint emissionHittable;
+  // 1 where the render keeps its feature passes (an EXR's albedo, normal and depth): shade
+  // records them and accumulate sums them. 0 (a PNG, an EXR without passes):
+  // neither, and the accumulation's feature layers stay zero (recordsFeaturePasses).
+  uint featurePasses;
+  uint unused0;  // to a whole number of 16-byte texels (binding_table.h)
+  uint unused1;
+  uint unused2;
 WP_STRUCT_END(RenderParams)
+
+// Whether the render records feature passes. Vulkan builds the stages of a render without
+// them with none of their code (WP_RENDER_FEATURE_PASSES false, prelude_glsl.h); C++ and
+// OpenCL test the parameter.
+WP_FN bool recordsFeaturePasses(RenderParams p) { return WP_RENDER_FEATURE_PASSES && p.featurePasses != 0u; }
 
 // One path waiting to be traced: 64 bytes.
 //   origin: xyz; w: asFloat(path slot in this pass)

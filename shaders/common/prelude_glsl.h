@@ -74,6 +74,10 @@ layout(constant_id = 17) const bool WP_SCENE_SKY_MAP = true;
 // Whether the scene has punctual lights (KHR_lights_punctual, lights.h): a light sample ran
 // their sampling beside the emissive triangle's in a scene lit by triangles alone.
 layout(constant_id = 18) const bool WP_SCENE_PUNCTUAL = true;
+// Whether the render keeps feature passes (RenderParams.featurePasses, integrator.h,
+// stages.h): their albedo, normal and depth were written for every hit and summed for every
+// pixel of a PNG too.
+layout(constant_id = 19) const bool WP_RENDER_FEATURE_PASSES = true;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

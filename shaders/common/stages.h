@@ -147,7 +147,9 @@ WP_FN_INLINED ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstan
   if (r.radiance.x != 0.0f || r.radiance.y != 0.0f || r.radiance.z != 0.0f) {
     addPathRadiance(WP_BUFFERS_ARG rayPathSlot(ray), r.radiance);
   }
-  if ((r.flags & WP_SHADE_FEATURES) != 0u) {
+  // Tested for the render too, so that Vulkan compiles the write away where it has none
+  // (lavapipe runs a branch's body whatever its lanes chose).
+  if (recordsFeaturePasses(params) && (r.flags & WP_SHADE_FEATURES) != 0u) {
     // Every path is shaded at bounce 0, which sets all its features; a later vertex that
     // takes the albedo and normal keeps that depth.
     uint slot = rayPathSlot(ray);
@@ -200,7 +202,8 @@ WP_FN_INLINED void connectStage(WP_BUFFERS RenderParams params, PassConstants pc
 
 // Accumulate, work item `t` (one per pixel of the pass): adds that pixel's paths' radiance,
 // its square (which gives the per-pixel variance) and their feature passes to the pixel's
-// running sums (accumulation.h), and counts them. It walks the pixel's slots in sample
+// running sums (accumulation.h; the feature passes only where the render records them, else
+// their layers stay zero), and counts them. It walks the pixel's slots in sample
 // order, so there are no races and the sum order is fixed. With adaptive sampling it stops
 // the pixel when stopsSampling says so, and adds none of the pixel's later samples (those
 // this pass traced anyway are dropped), so a pixel's samples do not depend on the passes.
@@ -221,8 +224,13 @@ WP_FN_INLINED void accumulateStage(WP_BUFFERS RenderParams params, PassConstants
   uint normalAt = accumulationIndex(WP_LAYER_NORMAL, pixel, pixels);
   vec4 sum = WP_LOAD(accumulation, sumAt);
   vec4 sumSquares = WP_LOAD(accumulation, squaresAt);
-  vec4 albedoDepth = WP_LOAD(accumulation, albedoDepthAt);
-  vec4 normal = WP_LOAD(accumulation, normalAt);
+  bool features = recordsFeaturePasses(params);
+  vec4 albedoDepth = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
+  vec4 normal = make_vec4(0.0f, 0.0f, 0.0f, 0.0f);
+  if (features) {
+    albedoDepth = WP_LOAD(accumulation, albedoDepthAt);
+    normal = WP_LOAD(accumulation, normalAt);
+  }
   float threshold = params.adaptiveThreshold;
   uint minSamples = params.adaptiveMinSamples;
   for (uint slot = t; slot < pathCount && !pixelStopped(sumSquares); slot += pixels) {
@@ -231,17 +239,21 @@ WP_FN_INLINED void accumulateStage(WP_BUFFERS RenderParams params, PassConstants
     WP_ADD_XYZ(sum, l);
     WP_ADD_XYZ(sumSquares, l * l);
     sum = withSampleCounted(sum);
-    PathFeatures f = WP_BUFFER(pathFeatures)[slot];
-    albedoDepth = albedoDepth + f.albedoDepth;
-    WP_ADD_XYZ(normal, featureNormal(f));
+    if (features) {
+      PathFeatures f = WP_BUFFER(pathFeatures)[slot];
+      albedoDepth = albedoDepth + f.albedoDepth;
+      WP_ADD_XYZ(normal, featureNormal(f));
+    }
     if (stopsSampling(sum, sumSquares, threshold, minSamples)) {
       sumSquares = withPixelStopped(sumSquares);
     }
   }
   WP_BUFFER(accumulation)[sumAt] = sum;
   WP_BUFFER(accumulation)[squaresAt] = sumSquares;
-  WP_BUFFER(accumulation)[albedoDepthAt] = albedoDepth;
-  WP_BUFFER(accumulation)[normalAt] = normal;
+  if (features) {
+    WP_BUFFER(accumulation)[albedoDepthAt] = albedoDepth;
+    WP_BUFFER(accumulation)[normalAt] = normal;
+  }
 }
 
 WP_END

@@ -416,6 +416,7 @@ int runRender(RenderOptions o) {
   }
   const FrameRange frames = framesToRender(o);
   checkOutputPath(framePath(o.output, frames.first));
+  o.settings.featurePasses = outputKeepsFeaturePasses(o.output, o.passes);
   checkCheckpointFlags(o.checkpoint, o.output);
   catchInterrupts();
 

@@ -38,6 +38,10 @@ PassSelection parsePasses(const std::string& text) {
   return selection;
 }
 
+bool outputKeepsFeaturePasses(const std::filesystem::path& output, const PassSelection& selection) {
+  return isExrPath(output) && (selection.albedo || selection.normal || selection.depth);
+}
+
 void keepSelectedPasses(RadianceImage& image, const PassSelection& selection) {
   if (!selection.albedo) image.albedo.clear();
   if (!selection.normal) image.normal.clear();

@@ -148,6 +148,8 @@ int findChannel(const EXRHeader& header, const char* name) {
 
 }  // namespace
 
+bool isExrPath(const fs::path& path) { return lowerExtension(path) == ".exr"; }
+
 void checkOutputPath(const fs::path& path) {
   std::string ext = lowerExtension(path);
   if (ext != ".png" && ext != ".exr")

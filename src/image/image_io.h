@@ -41,6 +41,9 @@ std::vector<uint32_t> displayPixels(const RadianceImage& image, const DisplaySet
 // like writeImage. Throws wp::Error on failure.
 void writePng(const std::filesystem::path& path, uint32_t width, uint32_t height, const std::vector<uint32_t>& pixels);
 
+// Whether `path` ends in .exr (any case): writeImage writes it as EXR.
+bool isExrPath(const std::filesystem::path& path);
+
 // Throws wp::Error unless `path` ends in .png or .exr (any case) and names a file in an
 // existing, writable directory; call it before rendering so a typo costs no render time.
 void checkOutputPath(const std::filesystem::path& path);

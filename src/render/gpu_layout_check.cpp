@@ -18,7 +18,7 @@ static_assert(sizeof(GpuMaterial) == 224);
 static_assert(sizeof(GpuLight) == 96);
 static_assert(sizeof(ThinLens) == 80);
 static_assert(sizeof(GpuEnvironment) == 32);
-static_assert(sizeof(RenderParams) == 208);
+static_assert(sizeof(RenderParams) == 224);
 static_assert(sizeof(PathRay) == 64);
 static_assert(sizeof(HitRecord) == 16);
 static_assert(sizeof(ShadowRay) == 48);

@@ -28,7 +28,9 @@ std::string settingsFlags(const RenderSettings& s) {
                       " --light-selection " +
                       (s.lightSelection == LightSelection::Power ? "power" : "solid-angle") + " --clamp " + clamp +
                       " --sky-sampling " + (s.skySampling ? "on" : "off") + " --adaptive " + adaptive +
-                      " --adaptive-min-samples " + std::to_string(s.adaptiveMinSamples) + " --widen-roughness " +
+                      " --adaptive-min-samples " + std::to_string(s.adaptiveMinSamples) +
+                      // Recorded or not (a PNG's render records none), not the EXR's choice among them.
+                      " --passes " + (s.featurePasses ? "all" : "none") + " --widen-roughness " +
                       (s.widenRoughness ? "on" : "off") + " --fixed-lobe-choice " +
                       (s.fixedLobeChoice ? "on" : "off");
   return flags;

@@ -67,6 +67,11 @@ struct RenderSettings {
   // (0: off, every pixel gets every sample).
   float adaptiveThreshold = 0.0f;
   uint32_t adaptiveMinSamples = 16;
+  // Whether the render records feature passes (albedo, normal, depth: what an EXR holds for
+  // denoisers). Off, their sums stay zero and the radiance is the same bit for bit, faster:
+  // `wavepath render` turns it off for a PNG and for an EXR without passes; the viewer keeps
+  // it (F12 saves an EXR too).
+  bool featurePasses = true;
 
   uint32_t sampleEnd() const { return endSample == 0 ? samplesPerPixel : endSample; }
   uint32_t samplesInRange() const { return sampleEnd() - firstSample; }

@@ -52,6 +52,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.adaptiveThreshold = settings.adaptiveThreshold;
   p.adaptiveMinSamples = settings.adaptiveMinSamples;
   p.emissionHittable = gpuScene.emissionHittable() ? 1u : 0u;
+  p.featurePasses = settings.featurePasses ? 1u : 0u;
   return p;
 }
 
@@ -274,9 +275,13 @@ RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
   size_t pixels = size_t(image.width) * image.height;
   image.mean.resize(pixels);
   image.variance.resize(pixels);
-  image.albedo.resize(pixels);
-  image.normal.resize(pixels);
-  image.depth.resize(pixels);
+  // A render without feature passes has none to give (their sums are zero).
+  const bool features = settings_.featurePasses;
+  if (features) {
+    image.albedo.resize(pixels);
+    image.normal.resize(pixels);
+    image.depth.resize(pixels);
+  }
   // With adaptive sampling the pixels hold different numbers of samples, which the EXR keeps.
   if (settings_.adaptiveThreshold > 0.0f) image.sampleCount.resize(pixels);
   for (size_t i = 0; i < pixels; ++i) {
@@ -291,9 +296,11 @@ RadianceImage WavefrontRenderer::imageOf(const Accumulation& acc) const {
     glm::vec3 sampleVariance = n > 1 ? glm::max(meanSquare - mean * mean, glm::vec3(0.0f)) * float(n / (n - 1)) : glm::vec3(0.0f);
     image.mean[i] = mean;
     image.variance[i] = sampleVariance / float(n);
-    image.albedo[i] = gpu::albedoSumOf(acc.albedoDepth[i]) / float(n);
-    image.normal[i] = glm::vec3(acc.normal[i]) / float(n);
-    image.depth[i] = gpu::depthSumOf(acc.albedoDepth[i]) / float(n);
+    if (features) {
+      image.albedo[i] = gpu::albedoSumOf(acc.albedoDepth[i]) / float(n);
+      image.normal[i] = glm::vec3(acc.normal[i]) / float(n);
+      image.depth[i] = gpu::depthSumOf(acc.albedoDepth[i]) / float(n);
+    }
   }
   return image;
 }

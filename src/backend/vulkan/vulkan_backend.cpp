@@ -212,14 +212,14 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   info.stage.pName = "main";
   // The constants in constant_id order, each 32 bits (VkBool32 or uint): the features of
   // prelude_glsl.h and the render's light selection, shade.comp's class and split, then the
-  // traversal's stacks, top level, planes, spheres, the sky's map and punctual lights (a stage
-  // without some of them ignores them, which Vulkan allows).
-  const std::array<uint32_t, 19> constants = {
+  // traversal's stacks, top level, planes, spheres, the sky's map, punctual lights and the
+  // render's feature passes (a stage without some of them ignores them, which Vulkan allows).
+  const std::array<uint32_t, 20> constants = {
       features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
       features.metallic,    features.emissive, features.skySampled, solidAngleSelection_,  shadeClass,
       splitShade_,          stacks_.inWorkgroupMemory, stacks_.topLevelEntries, stacks_.bottomLevelEntries,
       features.instanced,   features.planes,           features.spheres,        features.skyMap,
-      features.punctual};
+      features.punctual,    featurePasses_};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)};
@@ -280,9 +280,10 @@ void VulkanBackend::buildPipelines(bool motion, bool respecialize) {
 
 void VulkanBackend::loadScene(const GpuScene& scene) {
   vkDeviceWaitIdle(context_->device);
-  // Build the stages for the first scene; then swap in the other build of the stages that
-  // have two (still or with motion blur) and stages specialized to the scene's features and
-  // shade classes when those change: a scene like the last costs nothing.
+  // The stages for the first scene; then the other build of the stages that have two (still
+  // or with motion blur) and stages specialized to the scene's features and shade classes
+  // when those change: a scene like the last costs nothing. They are built in configure,
+  // which knows the render's settings too, so that no stage is built twice.
   const bool motion = scene.moving();
   const SceneFeatures sceneFeatures = scene.features();
   const SceneFeatures features = specializeToScene_ ? sceneFeatures : SceneFeatures::everything();
@@ -294,7 +295,8 @@ void VulkanBackend::loadScene(const GpuScene& scene) {
   sceneFeatures_ = features;
   stacks_ = stacks;
   splitShade_ = split;
-  buildPipelines(motion, respecialize);
+  pendingMotion_ = motion;
+  pendingRespecialize_ = pendingRespecialize_ || respecialize;
   const auto arrays = sceneArrays(scene);
   const DeviceLimits& limits = context_->limits;
   const uint64_t bytes = checkSceneFits(limits, arrays);
@@ -331,10 +333,15 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   // The stages compile the solid-angle light selection only for a render that uses it (or
   // with every feature): lavapipe runs a loop's body once even where no lane enters it.
   const bool solidAngle = params.lightSelection == WP_LIGHT_SELECTION_SOLID_ANGLE || !specializeToScene_;
-  if (solidAngle != solidAngleSelection_) {
-    solidAngleSelection_ = solidAngle;
-    buildPipelines(motion_, true);
-  }
+  // And the feature passes only for a render that keeps them: a few percent of shade's time
+  // and half of accumulate's on lavapipe (docs/performance.md).
+  const bool featurePasses = params.featurePasses != 0u || !specializeToScene_;
+  const bool respecialize =
+      pendingRespecialize_ || solidAngle != solidAngleSelection_ || featurePasses != featurePasses_;
+  solidAngleSelection_ = solidAngle;
+  featurePasses_ = featurePasses;
+  buildPipelines(pendingMotion_, respecialize);
+  pendingRespecialize_ = false;
   params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   std::memcpy(params_.mapped(), &params, sizeof(params));
 

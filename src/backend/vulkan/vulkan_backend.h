@@ -62,7 +62,7 @@ private:
   // of a split shade or not (splitShade_).
   VkPipeline createPipeline(SpirvCode code, const SceneFeatures& features, uint32_t shadeClass);
   // (Re)builds the stages for `motion` (WP_MOTION_BLUR or not) specialized to sceneFeatures_,
-  // stacks_, splitShade_ and solidAngleSelection_: those whose build changed, or all with
+  // stacks_, splitShade_, solidAngleSelection_ and featurePasses_: those whose build changed, or all with
   // respecialize.
   void buildPipelines(bool motion, bool respecialize);
   // Records a dispatch of `pipeline`, after a barrier on what the dispatches before wrote.
@@ -81,6 +81,11 @@ private:
   SceneFeatures sceneFeatures_;  // and specialized to these
   StackPlacement stacks_;        // with the traversal's stacks here
   bool solidAngleSelection_ = false;  // and to the render's light selection (configure)
+  bool featurePasses_ = true;         // and whether it records feature passes (configure)
+  // What loadScene asks of the stages, which configure builds: the motion build or not, and
+  // whether the loaded scene needs them specialized anew.
+  bool pendingMotion_ = false;
+  bool pendingRespecialize_ = false;
   // Whether shade is split by shade class: pipelines_[Shade] then shades the diffuse class
   // and microfacetShadePipeline_ the hits it deferred.
   bool splitShade_ = false;
