@@ -326,11 +326,11 @@ WP_FN_INLINED float russianRoulette(RenderParams params, uint bounce, vec3 throu
 // did not cover: with MIS, what BSDF sampling weighs in; with BSDF sampling, all of it;
 // with NEE alone, what only a delta lobe reaches; and, where the render records them, the
 // feature passes of a path whose vertices so far were all perfectly specular (what a mirror
-// shows, shadeHit). Where nothing
-// a ray can hit emits (params.emissionHittable 0: lamps alone, a black sky) and the features
-// are taken, that ray would add exactly nothing, and it is not traced: the image and its
-// passes are the same, without the extend and shade work (40% of the extension rays of a
-// direct-light render, --max-depth 0, of the instanced scene).
+// shows, shadeHit). Where nothing a ray can hit emits (params.emissionHittable 0: lamps
+// alone, a black sky) and the features are taken or not recorded, that ray would add
+// exactly nothing, and it is not traced: the image and its passes are the same, without the
+// extend and shade work (40% of the extension rays of a direct-light render, --max-depth 0,
+// of the instanced scene).
 WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuMaterial m, VertexDraws draws) {
   NextRay next;
   next.exists = false;
