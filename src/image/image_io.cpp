@@ -190,11 +190,11 @@ void writeImage(const fs::path& path, const RadianceImage& image, const DisplayS
   checkOutputPath(path);
   checkImageShape(path, image);
   std::vector<unsigned char> bytes;
-  if (lowerExtension(path) == ".png") {
+  if (isExrPath(path)) {
+    bytes = encodeExr(image);
+  } else {
     bytes = encodePng(image.width, image.height, displayPixels(image, display));
     if (bytes.empty()) failWrite(path, "PNG encoding failed (out of memory?); render a smaller image");
-  } else {
-    bytes = encodeExr(image);
   }
   writeFileAtomically(path, bytes, "image");
 }
