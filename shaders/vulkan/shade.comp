@@ -9,10 +9,19 @@
 // scene, shades those. lavapipe runs every line of a shader for a SIMD group whatever its
 // lanes' materials, so a diffuse hit no longer pays for the BRDF (docs/performance.md). The
 // results go to each path's own slot: the images are those of one pipeline.
+//
+// Appends are counted per workgroup, with one atomic per queue and workgroup, as OpenCL's
+// shade does. lavapipe runs a dispatch's workgroups on all its threads at once: with an atomic
+// per subgroup, the threads' appends interleaved every few entries at the queues' ends, where
+// each store could find its line in the other core's cache; on this project's 2-core machines
+// shade then gained nothing from its second thread (docs/performance.md). Per workgroup, each thread writes runs of up to 64 entries. The two
+// barriers cost lavapipe a quarter of shade's time on one thread (it runs the subgroups of a
+// workgroup with barriers as coroutines), and win back more on two.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "bindings.glsl"
 #include "common/stages.h"
 
@@ -21,18 +30,6 @@
 layout(constant_id = 9) const uint WP_SHADE_CLASS = WP_SHADE_CLASS_DIFFUSE;
 layout(constant_id = 10) const bool WP_SHADE_SPLIT = false;
 
-// The entry of `queue` for this invocation, if `wants`. One atomic per subgroup instead of
-// one per invocation: atomics serialise lanes, on GPUs and even more on lavapipe, where each
-// is a scalar loop over the SIMD lanes.
-uint appendToQueue(WorkQueue queue, bool wants) {
-  uvec4 ballot = subgroupBallot(wants);
-  uint base = 0u;
-  if (subgroupElect()) {
-    base = reserveQueueEntries(queue, subgroupBallotBitCount(ballot));
-  }
-  return queueEntry(queue, subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot));
-}
-
 // Whether the hit at entry `i` of the bounce's ray queue needs glTF's BRDF.
 bool needsMicrofacet(uint i) {
   HitRecord hit = hitsAt(i);
@@ -40,57 +37,79 @@ bool needsMicrofacet(uint i) {
          materialShadeNeeds(materialsAt(hitMaterial(hitInstanceField(hit), hitPrimitive(hit)))) != 0u;
 }
 
-// Appends entry `i` to the deferred shade queue if `defers`, and raises the queue's
-// dispatch to cover it.
-void deferShade(uint i, bool defers) {
-  uvec4 ballot = subgroupBallot(defers);
-  if (ballot == uvec4(0u)) {
-    return;
-  }
-  WorkQueue queue = deferredShadeQueue();
-  uint base = 0u;
+// What a workgroup appends to each queue, per subgroup, then the first entries it reserved:
+// x the continuations, y the shadow rays, z the deferred hits.
+shared uvec3 subgroupAppends[WP_WORKGROUP_SIZE];
+shared uvec3 workgroupFirstEntries;
+
+// This subgroup's first entry in each queue, given how many entries the subgroup appends to
+// each (`subgroupCounts`, the same in all its invocations). Every invocation of the workgroup
+// must call it: it holds the workgroup's barriers.
+uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
   if (subgroupElect()) {
-    uint count = subgroupBallotBitCount(ballot);
-    base = reserveQueueEntries(queue, count);
-    atomicMax(counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH], dispatchGroups(base + count));
-    counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH + 1u] = 1u;  // every subgroup that appends writes the same
-    counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH + 2u] = 1u;
+    subgroupAppends[gl_SubgroupID] = subgroupCounts;
   }
-  uint entry = queueEntry(queue, subgroupBroadcastFirst(base) + subgroupBallotExclusiveBitCount(ballot));
-  if (defers) {
-    deferredHits[entry] = i;
+  barrier();
+  // Each lane reads one subgroup's counts: the sums of those before this subgroup and of all.
+  uvec3 before = uvec3(0u);
+  uvec3 total = uvec3(0u);
+  for (uint first = 0u; first < gl_NumSubgroups; first += gl_SubgroupSize) {
+    uint s = first + gl_SubgroupInvocationID;
+    uvec3 counts = s < gl_NumSubgroups ? subgroupAppends[s] : uvec3(0u);
+    before += subgroupAdd(s < gl_SubgroupID ? counts : uvec3(0u));
+    total += subgroupAdd(counts);
   }
+  if (gl_LocalInvocationIndex == 0u) {
+    workgroupFirstEntries.x = reserveQueueEntries(continuationQueue(params, pc), total.x);
+    workgroupFirstEntries.y = reserveQueueEntries(shadowQueue(pc.bounce), total.y);
+    if (total.z > 0u) {
+      // The deferred hits' pipeline is dispatched over what the first appended.
+      workgroupFirstEntries.z = reserveQueueEntries(deferredShadeQueue(), total.z);
+      atomicMax(counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH], dispatchGroups(workgroupFirstEntries.z + total.z));
+      counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH + 1u] = 1u;  // every workgroup that appends writes the same
+      counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH + 2u] = 1u;
+    }
+  }
+  barrier();
+  return workgroupFirstEntries + before;
 }
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
+  bool shades;
+  bool defers = false;
   if (WP_SHADE_CLASS == WP_SHADE_CLASS_DIFFUSE) {
-    if (i >= queueSize(rayQueue(pc.bounce, params.maxPaths))) {
-      return;
-    }
-    if (WP_SHADE_SPLIT) {
-      bool defers = needsMicrofacet(i);
-      deferShade(i, defers);
-      if (defers) {
-        return;
-      }
+    shades = i < queueSize(rayQueue(pc.bounce, params.maxPaths));
+    if (WP_SHADE_SPLIT && shades) {
+      defers = needsMicrofacet(i);
+      shades = !defers;
     }
   } else {
     WorkQueue deferred = deferredShadeQueue();
-    if (i >= queueSize(deferred)) {
-      return;
+    shades = i < queueSize(deferred);
+    if (shades) {
+      i = deferredHitsAt(queueEntry(deferred, i));
     }
-    i = deferredHitsAt(queueEntry(deferred, i));
   }
-  ShadeResult r = shadeStage(params, pc, i);
+  ShadeResult r;
+  r.flags = 0u;
+  if (shades) {
+    r = shadeStage(params, pc, i);
+  }
   bool extends = (r.flags & WP_SHADE_EXTEND) != 0u;
-  uint j = appendToQueue(continuationQueue(params, pc), extends);
-  if (extends) {
-    rays[j] = r.next;
-  }
   bool shadows = (r.flags & WP_SHADE_SHADOW) != 0u;
-  uint k = appendToQueue(shadowQueue(pc.bounce), shadows);
+  uvec4 extendBallot = subgroupBallot(extends);
+  uvec4 shadowBallot = subgroupBallot(shadows);
+  uvec4 deferBallot = subgroupBallot(defers);
+  uvec3 first = subgroupFirstEntries(uvec3(subgroupBallotBitCount(extendBallot), subgroupBallotBitCount(shadowBallot),
+                                           subgroupBallotBitCount(deferBallot)));
+  if (extends) {
+    rays[queueEntry(continuationQueue(params, pc), first.x + subgroupBallotExclusiveBitCount(extendBallot))] = r.next;
+  }
   if (shadows) {
-    shadowRays[k] = r.shadow;
+    shadowRays[queueEntry(shadowQueue(pc.bounce), first.y + subgroupBallotExclusiveBitCount(shadowBallot))] = r.shadow;
+  }
+  if (defers) {
+    deferredHits[queueEntry(deferredShadeQueue(), first.z + subgroupBallotExclusiveBitCount(deferBallot))] = i;
   }
 }

@@ -152,8 +152,8 @@ int computeQueueFamily(VkPhysicalDevice device) {
   return -1;
 }
 
-// The stages need Vulkan 1.1 with subgroup ballot and vote in compute shaders (queue
-// appends, traversal); returns what is missing, or an empty string.
+// The stages need Vulkan 1.1 with subgroup ballot, vote and arithmetic in compute shaders
+// (queue appends, traversal); returns what is missing, or an empty string.
 std::string missingRequirement(VkPhysicalDevice device) {
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -165,10 +165,11 @@ std::string missingRequirement(VkPhysicalDevice device) {
   if (computeQueueFamily(device) < 0) {
     return "a compute queue";
   }
-  const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT;
+  const VkSubgroupFeatureFlags needed =
+      VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
   if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) ||
       (subgroup.supportedOperations & needed) != needed) {
-    return "subgroup ballot and vote in compute shaders";
+    return "subgroup ballot, vote and arithmetic in compute shaders";
   }
   return "";
 }
