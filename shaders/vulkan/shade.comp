@@ -62,6 +62,7 @@ uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
   if (gl_LocalInvocationIndex == 0u) {
     workgroupFirstEntries.x = reserveQueueEntries(continuationQueue(params, pc), total.x);
     workgroupFirstEntries.y = reserveQueueEntries(shadowQueue(pc.bounce), total.y);
+    workgroupFirstEntries.z = 0u;
     if (total.z > 0u) {
       // The deferred hits' pipeline is dispatched over what the first appended.
       workgroupFirstEntries.z = reserveQueueEntries(deferredShadeQueue(), total.z);
