@@ -37,28 +37,39 @@ bool needsMicrofacet(uint i) {
          materialShadeNeeds(materialsAt(hitMaterial(hitInstanceField(hit), hitPrimitive(hit)))) != 0u;
 }
 
-// What a workgroup appends to each queue, per subgroup, then the first entries it reserved:
-// x the continuations, y the shadow rays, z the deferred hits.
-shared uvec3 subgroupAppends[WP_WORKGROUP_SIZE];
+// The counts of a subgroup's or a workgroup's appends to the three queues, packed into one
+// word so that they are summed together (a subgroup reduction is a loop over the lanes on
+// lavapipe): x the continuations, y the shadow rays, z the deferred hits, 10 bits each.
+#if WP_WORKGROUP_SIZE > 1023
+#error "a workgroup's appends to one queue must fit in 10 bits"
+#endif
+uint packAppendCounts(uvec3 counts) { return counts.x | (counts.y << 10u) | (counts.z << 20u); }
+uvec3 unpackAppendCounts(uint packed) { return uvec3(packed & 1023u, (packed >> 10u) & 1023u, packed >> 20u); }
+
+// What each subgroup of the workgroup appends (packed), then the workgroup's first entry in
+// each queue.
+shared uint subgroupAppends[WP_WORKGROUP_SIZE];
 shared uvec3 workgroupFirstEntries;
 
-// This subgroup's first entry in each queue, given how many entries the subgroup appends to
-// each (`subgroupCounts`, the same in all its invocations). Every invocation of the workgroup
-// must call it: it holds the workgroup's barriers.
+// This subgroup's first entry in each queue (x continuations, y shadow rays, z deferred hits),
+// given how many entries the subgroup appends to each (`subgroupCounts`, the same in all its
+// invocations). Every invocation of the workgroup must call it: it holds the workgroup's
+// barriers.
 uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
   if (subgroupElect()) {
-    subgroupAppends[gl_SubgroupID] = subgroupCounts;
+    subgroupAppends[gl_SubgroupID] = packAppendCounts(subgroupCounts);
   }
   barrier();
   // Each lane reads one subgroup's counts: the sums of those before this subgroup and of all.
-  uvec3 before = uvec3(0u);
-  uvec3 total = uvec3(0u);
+  uint before = 0u;
+  uint all = 0u;
   for (uint first = 0u; first < gl_NumSubgroups; first += gl_SubgroupSize) {
     uint s = first + gl_SubgroupInvocationID;
-    uvec3 counts = s < gl_NumSubgroups ? subgroupAppends[s] : uvec3(0u);
-    before += subgroupAdd(s < gl_SubgroupID ? counts : uvec3(0u));
-    total += subgroupAdd(counts);
+    uint counts = s < gl_NumSubgroups ? subgroupAppends[s] : 0u;
+    before += subgroupAdd(s < gl_SubgroupID ? counts : 0u);
+    all += subgroupAdd(counts);
   }
+  uvec3 total = unpackAppendCounts(all);
   if (gl_LocalInvocationIndex == 0u) {
     workgroupFirstEntries.x = reserveQueueEntries(continuationQueue(params, pc), total.x);
     workgroupFirstEntries.y = reserveQueueEntries(shadowQueue(pc.bounce), total.y);
@@ -72,7 +83,7 @@ uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
     }
   }
   barrier();
-  return workgroupFirstEntries + before;
+  return workgroupFirstEntries + unpackAppendCounts(before);
 }
 
 void main() {
