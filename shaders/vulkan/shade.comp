@@ -14,9 +14,10 @@
 // shade does. lavapipe runs a dispatch's workgroups on all its threads at once: with an atomic
 // per subgroup, the threads' appends interleaved every few entries at the queues' ends, where
 // each store could find its line in the other core's cache; on this project's 2-core machines
-// shade then gained nothing from its second thread (docs/performance.md). Per workgroup, each thread writes runs of up to 64 entries. The two
-// barriers cost lavapipe a quarter of shade's time on one thread (it runs the subgroups of a
-// workgroup with barriers as coroutines), and win back more on two.
+// shade then gained nothing from its second thread (docs/performance.md). Per workgroup, each
+// thread writes runs of up to 64 entries. The two barriers cost lavapipe a fifth to a quarter
+// of shade's time on one thread (it runs the subgroups of a workgroup with barriers as
+// coroutines), and win back more on two.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_ballot : require
