@@ -62,8 +62,8 @@ private:
   // of a split shade or not (splitShade_).
   VkPipeline createPipeline(SpirvCode code, const SceneFeatures& features, uint32_t shadeClass);
   // (Re)builds the stages for `motion` (WP_MOTION_BLUR or not) specialized to sceneFeatures_,
-  // stacks_, splitShade_, solidAngleSelection_ and featurePasses_: those whose build changed, or all with
-  // respecialize.
+  // stacks_, splitShade_, solidAngleSelection_ and featurePasses_: those whose build changed,
+  // or all with respecialize.
   void buildPipelines(bool motion, bool respecialize);
   // Records a dispatch of `pipeline`, after a barrier on what the dispatches before wrote.
   void record(VkPipeline pipeline, const gpu::PassConstants& constants, const DispatchSize& size);
