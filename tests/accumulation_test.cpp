@@ -44,7 +44,9 @@ TEST(Accumulation, APathAddsAFiniteBoundedRadiance) {
 TEST(LongRender, PassesCompileNoShaders) {
   // lavapipe (Mesa 22.3) compiled a new copy of every stage whose loops a uniform-buffer value
   // bounds at each bind, and kept them all: 150 KB a pass, 100 MB over a 10,000-spp render.
-  // RenderParams is a storage buffer since; 60 passes here compiled about 60 shaders before.
+  // RenderParams is read at an entry given by a push constant since, not at a constant offset
+  // (bindings.glsl); 60 passes here compiled about 60 shaders before, and do again with the
+  // entry a constant.
   const Scene scene = assetScene("cornell-box.gltf");
   const GpuScene gpuScene = packScene(scene);
   std::unique_ptr<Backend> backend = createBackend({"vulkan", -1, false, "readback"});

@@ -16,8 +16,8 @@
 //   format    how a Vulkan texel buffer holds the elements: RECORD (a WP_RECORD of `stride`
 //             RGBA32UI texels), VEC4 (one RGBA32UI texel each), R32 (one R32UI texel each),
 //             WORDS (four uints to an RGBA32UI texel), NONE (not a texel buffer);
-//   access    UNIFORM (the render parameters; Vulkan binds them as a read-only storage buffer,
-//             bindings.glsl says why), TEXELS (read-only; a scene array), STORAGE
+//   access    UNIFORM (the render parameters; Vulkan reads them at an entry given by a push
+//             constant, bindings.glsl says why), TEXELS (read-only; a scene array), STORAGE
 //             (read and written), WRITE (a queue the stage appends to), TEXEL_VIEW (Vulkan:
 //             the queue of the same name again, read as texels by the next stage), CONSTANT
 //             (read-only texels the backend uploads once from a header's table);

@@ -6,4 +6,4 @@
 #include "bindings.glsl"
 #include "common/stages.h"
 
-void main() { accumulateStage(params, pc, gl_GlobalInvocationID.x); }
+void main() { accumulateStage(renderParams(), pc, gl_GlobalInvocationID.x); }

@@ -7,4 +7,4 @@
 #include "bindings.glsl"
 #include "common/stages.h"
 
-void main() { advanceStage(params, pc, gl_GlobalInvocationID.x); }
+void main() { advanceStage(renderParams(), pc, gl_GlobalInvocationID.x); }

@@ -5,17 +5,24 @@
 
 layout(local_size_x = WP_WORKGROUP_SIZE) in;
 
-layout(push_constant) uniform Push { PassConstants pc; };
+// The dispatch's PassConstants, then the render parameters' entry in their uniform buffer
+// (always 0; VulkanPushConstants in vulkan_backend.cpp says why it is not a constant).
+layout(push_constant) uniform Push {
+  PassConstants pc;
+  uint paramsEntry;
+};
 
 #define WP_GLSL_BINDING(name, binding, Element, stride, format, access, backends) \
   WP_GLSL_##access(name, binding, Element, stride, format)
-// The render parameters: a read-only storage buffer, not a uniform buffer: lavapipe (Mesa
-// 22.3) inlines uniform values into a shader whose loops they bound (the lights, planes and
-// aperture blades are counted in RenderParams) by compiling it anew at every bind, and never
-// frees the copies: a 10,000-spp render grew by 100 MB (wavepath-bench-soak,
-// docs/robustness.md).
+// The render parameters: a uniform buffer read at an entry given by a push constant. Read at
+// a constant offset, lavapipe (Mesa 22.3) inlines uniform values that a branch or loop tests
+// (the lights, planes and aperture blades counted in RenderParams, the mode) into the shader
+// and compiles it anew at every bind, never freeing the copies: a 10,000-spp render grew by
+// 100 MB (wavepath-bench-soak, docs/robustness.md; LongRender.PassesCompileNoShaders). Read
+// from a storage buffer, each parameter was loaded lane by lane, a third of shade's time; an
+// offset computed from push constants is one load for all lanes and inlines nothing.
 #define WP_GLSL_UNIFORM(name, index, Element, stride, format) \
-  layout(std430, binding = index) readonly buffer name##Block { Element name; };
+  layout(std140, binding = index) uniform name##Block { Element name##Entries[1]; };
 #define WP_GLSL_STORAGE(name, index, Element, stride, format)              \
   layout(std430, binding = index) buffer name##Block { Element name[]; }; \
   Element name##At(uint i) { return name[i]; }
@@ -45,6 +52,9 @@ layout(push_constant) uniform Push { PassConstants pc; };
   uint name##At(uint i) { return texelFetch(name##Texels, int(i >> 2u))[i & 3u]; }
 
 WP_BINDINGS(WP_GLSL_BINDING)
+
+// The render parameters, where the stages take them (bindings.glsl's uniform block above).
+RenderParams renderParams() { return paramsEntries[paramsEntry]; }
 
 // The BSDF's constant tables (bsdf_table_lookup.h reads WP_BSDF_TABLE; C++ and OpenCL
 // index the header's array).

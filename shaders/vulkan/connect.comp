@@ -5,4 +5,4 @@
 #include "bindings.glsl"
 #include "common/stages.h"
 
-void main() { connectStage(params, pc, gl_GlobalInvocationID.x); }
+void main() { connectStage(renderParams(), pc, gl_GlobalInvocationID.x); }

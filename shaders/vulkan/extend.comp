@@ -5,4 +5,4 @@
 #include "bindings.glsl"
 #include "common/stages.h"
 
-void main() { extendStage(params, pc, gl_GlobalInvocationID.x); }
+void main() { extendStage(renderParams(), pc, gl_GlobalInvocationID.x); }

@@ -5,4 +5,4 @@
 #include "bindings.glsl"
 #include "common/stages.h"
 
-void main() { generateStage(params, pc, gl_GlobalInvocationID.x); }
+void main() { generateStage(renderParams(), pc, gl_GlobalInvocationID.x); }

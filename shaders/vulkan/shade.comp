@@ -72,7 +72,7 @@ uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
   }
   uvec3 total = unpackAppendCounts(all);
   if (gl_LocalInvocationIndex == 0u) {
-    workgroupFirstEntries.x = reserveQueueEntries(continuationQueue(params, pc), total.x);
+    workgroupFirstEntries.x = reserveQueueEntries(continuationQueue(renderParams(), pc), total.x);
     workgroupFirstEntries.y = reserveQueueEntries(shadowQueue(pc.bounce), total.y);
     workgroupFirstEntries.z = 0u;
     if (total.z > 0u) {
@@ -88,6 +88,7 @@ uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
 }
 
 void main() {
+  RenderParams params = renderParams();
   uint i = gl_GlobalInvocationID.x;
   bool shades;
   bool defers = false;

@@ -51,7 +51,7 @@ SpirvCode spirvFor(Kernel kernel, bool motion) {
 
 VkDescriptorType descriptorType(uint32_t binding) {
   switch (gpu::kBindings[binding].access) {
-    case gpu::BindingAccess::Uniform: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;  // bindings.glsl says why
+    case gpu::BindingAccess::Uniform: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case gpu::BindingAccess::Texels:
     case gpu::BindingAccess::TexelView:
     case gpu::BindingAccess::Constant: return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -63,6 +63,16 @@ VkDescriptorType descriptorType(uint32_t binding) {
 
 // Bytes of one texel of the view a texel-buffer binding is read through (bindings.glsl).
 uint64_t texelBytes(uint32_t binding) { return gpu::kBindings[binding].format == gpu::TexelFormat::R32ui ? 4 : 16; }
+
+// The push constants of every stage (bindings.glsl): the dispatch's constants, then the entry of
+// the render parameters in their uniform buffer, always 0. The stages index the parameters
+// with it rather than with the constant 0 because lavapipe (Mesa 22.3) inlines uniform values
+// read at constant offsets into the shader and compiles it anew at every bind; an offset from
+// push constants is also uniform, so each parameter is one load for all lanes.
+struct VulkanPushConstants {
+  gpu::PassConstants pass;
+  uint32_t paramsEntry;
+};
 
 // Device memory per path in flight: the queues of both backends and the deferred shade
 // queue (shade.comp).
@@ -189,7 +199,7 @@ void VulkanBackend::createLayouts() {
   layoutInfo.pBindings = bindings.data();
   VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout_));
 
-  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::PassConstants)};
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(VulkanPushConstants)};
   VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pipelineLayoutInfo.setLayoutCount = 1;
   pipelineLayoutInfo.pSetLayouts = &setLayout_;
@@ -342,7 +352,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   featurePasses_ = featurePasses;
   buildPipelines(pendingMotion_, respecialize);
   pendingRespecialize_ = false;
-  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   std::memcpy(params_.mapped(), &params, sizeof(params));
 
   bool resized = rays_.handle() == VK_NULL_HANDLE || hits_.size() < maxPaths * sizeof(gpu::HitRecord);
@@ -477,7 +487,8 @@ void VulkanBackend::record(VkPipeline pipeline, const gpu::PassConstants& consta
   }
   recordedDispatch_ = true;
   vkCmdBindPipeline(commandBuffer_, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+  const VulkanPushConstants push{constants, 0u};
+  vkCmdPushConstants(commandBuffer_, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   // The barrier before every dispatch makes arguments written by an earlier stage visible.
   switch (size.source) {
     case DispatchSize::Source::Host:
