@@ -15,14 +15,17 @@
 //   stride    16-byte texels per element, 0 for a 4-byte element;
 //   format    how a Vulkan texel buffer holds the elements: RECORD (a WP_RECORD of `stride`
 //             RGBA32UI texels), VEC4 (one RGBA32UI texel each), R32 (one R32UI texel each),
-//             WORDS (four uints to an RGBA32UI texel), NONE (not a texel buffer);
+//             WORDS (four uints to an RGBA32UI texel), NONE (not a texel buffer), VIEWED (a
+//             storage buffer whose elements Vulkan reads through the TEXEL_VIEW row of the
+//             same name);
 //   access    UNIFORM (the render parameters; Vulkan reads them at an entry given by a push
 //             constant, bindings.glsl says why), TEXELS (read-only; a scene array), STORAGE
 //             (read and written), WRITE (a queue the stage appends to), TEXEL_VIEW (Vulkan:
-//             the queue of the same name again, read as texels by the next stage), CONSTANT
+//             the buffer of the same name again, read as texels: a queue by the next stage, the
+//             paths' radiance and features by the stages that add to them), CONSTANT
 //             (read-only texels the backend uploads once from a header's table);
-//   backends  ALL, or VULKAN for what OpenCL and C++ do without (their kernels read a queue
-//             through the queue's own pointer, and shade every material class in one go): no
+//   backends  ALL, or VULKAN for what OpenCL and C++ do without (their kernels read a buffer
+//             through the buffer's own pointer, and shade every material class in one go): no
 //             kernel argument, no DeviceBuffers member. Rows for ALL come first: OpenCL's
 //             kernel argument i is binding i.
 // Read-only data goes through texel buffers on Vulkan: on lavapipe a texel fetch is a SIMD
@@ -39,7 +42,7 @@
   X(rays, 7, PathRay, 4, NONE, WRITE, ALL)                                        \
   X(hits, 8, HitRecord, 1, NONE, WRITE, ALL)                                      \
   X(shadowRays, 9, ShadowRay, 3, NONE, WRITE, ALL)                                \
-  X(pathRadiance, 10, vec4, 1, NONE, STORAGE, ALL)                                \
+  X(pathRadiance, 10, vec4, 1, VIEWED, STORAGE, ALL)                              \
   X(counters, 11, uint, 0, NONE, STORAGE, ALL)                                    \
   X(accumulation, 12, vec4, 1, NONE, STORAGE, ALL)                                \
   X(skyRadiance, 13, vec4, 1, VEC4, TEXELS, ALL)                                  \
@@ -48,12 +51,14 @@
   X(triangleShading, 16, GpuTriangleShading, 10, RECORD, TEXELS, ALL)             \
   X(textures, 17, GpuTexture, 3, RECORD, TEXELS, ALL)                             \
   X(texels, 18, uint, 0, WORDS, TEXELS, ALL)                                      \
-  X(pathFeatures, 19, PathFeatures, 2, NONE, STORAGE, ALL)                         \
+  X(pathFeatures, 19, PathFeatures, 2, VIEWED, STORAGE, ALL)                       \
   X(rays, 20, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \
   X(hits, 21, HitRecord, 1, RECORD, TEXEL_VIEW, VULKAN)                           \
   X(shadowRays, 22, ShadowRay, 3, RECORD, TEXEL_VIEW, VULKAN)                      \
   X(bsdfTables, 23, float, 0, R32, CONSTANT, VULKAN)                             \
-  X(deferredHits, 24, uint, 0, NONE, STORAGE, VULKAN)
+  X(deferredHits, 24, uint, 0, NONE, STORAGE, VULKAN)                            \
+  X(pathRadiance, 25, vec4, 1, VEC4, TEXEL_VIEW, VULKAN)                          \
+  X(pathFeatures, 26, PathFeatures, 2, RECORD, TEXEL_VIEW, VULKAN)
 
 // What the rows mean:
 //   params          RenderParams, the render's settings
@@ -137,6 +142,7 @@ struct BindingInfo {
   BindingInfo{#name, binding, uint(sizeof(Element)), stride, WP_HOST_FORMAT_##format, WP_HOST_ACCESS_##access, \
               WP_HOST_ON_OPENCL_##backends},
 #define WP_HOST_FORMAT_NONE TexelFormat::None
+#define WP_HOST_FORMAT_VIEWED TexelFormat::None
 #define WP_HOST_FORMAT_RECORD TexelFormat::Rgba32ui
 #define WP_HOST_FORMAT_VEC4 TexelFormat::Rgba32ui
 #define WP_HOST_FORMAT_WORDS TexelFormat::Rgba32ui

@@ -111,6 +111,8 @@ typedef uint4 uvec4;
 #define WP_ATOMIC_ADD(element, n) atomic_add(&(element), n)
 // Adds a vec3 to the xyz of a vec4 (for a buffer element, a write of three components).
 #define WP_ADD_XYZ(element, v) (element).xyz += (v)
+// Sets the xyz of a vec4 and keeps its w (for a buffer element, a write of three components).
+#define WP_SET_XYZ(element, v) (element).xyz = (v)
 // The xyz of a vec4 (for a buffer element, a read of three components).
 #define WP_XYZ(v) (v).xyz
 

@@ -79,6 +79,8 @@ inline bool notANumber(float x) { return std::isnan(x); }
 #define WP_ATOMIC_ADD(element, n) std::atomic_ref<uint>(element).fetch_add(n)
 // Adds a vec3 to the xyz of a vec4.
 #define WP_ADD_XYZ(element, v) (element) += vec4((v), 0.0f)
+// Sets the xyz of a vec4 and keeps its w (for a buffer element, a write of three components).
+#define WP_SET_XYZ(element, v) (element) = vec4((v), (element).w)
 // The xyz of a vec4.
 #define WP_XYZ(v) vec3(v)
 

@@ -66,9 +66,12 @@ WP_FN bool shadowRayUnoccluded(WP_BUFFERS RenderParams params, ShadowRay s) {
                    shadowRayLength(s), shadowRayTime(s));
 }
 
-// Adds to the radiance of the path in `slot` (its rgb only: on lavapipe every component
-// written is a scalar store per lane).
-WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) { WP_ADD_XYZ(WP_BUFFER(pathRadiance)[slot], radiance); }
+// Adds to the radiance of the path in `slot`: read through WP_LOAD (on Vulkan a texel view,
+// one gather), written rgb only (on lavapipe every component written is a scalar store per
+// lane).
+WP_FN void addPathRadiance(WP_BUFFERS uint slot, vec3 radiance) {
+  WP_SET_XYZ(WP_BUFFER(pathRadiance)[slot], WP_XYZ(WP_LOAD(pathRadiance, slot)) + radiance);
+}
 
 // Whether adaptive sampling stopped the pixel of path slot `slot` of the pass `pc` (as of the
 // passes before it: accumulate of this pass decides for its own samples).
@@ -155,7 +158,7 @@ WP_FN_INLINED ShadeResult shadeStage(WP_BUFFERS RenderParams params, PassConstan
     uint slot = rayPathSlot(ray);
     PathFeatures f = r.features;
     if (rayBounce(ray) > 0u) {
-      f = withDepth(f, featureDepth(WP_BUFFER(pathFeatures)[slot]));
+      f = withDepth(f, featureDepth(WP_LOAD(pathFeatures, slot)));
     }
     WP_BUFFER(pathFeatures)[slot] = f;
   }
@@ -234,13 +237,12 @@ WP_FN_INLINED void accumulateStage(WP_BUFFERS RenderParams params, PassConstants
   float threshold = params.adaptiveThreshold;
   uint minSamples = params.adaptiveMinSamples;
   for (uint slot = t; slot < pathCount && !pixelStopped(sumSquares); slot += pixels) {
-    // Only the rgb is read: on lavapipe every component is a scalar load per lane.
-    vec3 l = accumulableRadiance(WP_XYZ(WP_BUFFER(pathRadiance)[slot]));
+    vec3 l = accumulableRadiance(WP_XYZ(WP_LOAD(pathRadiance, slot)));
     WP_ADD_XYZ(sum, l);
     WP_ADD_XYZ(sumSquares, l * l);
     sum = withSampleCounted(sum);
     if (features) {
-      PathFeatures f = WP_BUFFER(pathFeatures)[slot];
+      PathFeatures f = WP_LOAD(pathFeatures, slot);
       albedoDepth = albedoDepth + f.albedoDepth;
       WP_ADD_XYZ(normal, featureNormal(f));
     }

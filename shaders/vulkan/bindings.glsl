@@ -25,7 +25,13 @@ layout(push_constant) uniform Push {
   layout(std140, binding = index) uniform name##Block { Element name##Entries[1]; };
 #define WP_GLSL_STORAGE(name, index, Element, stride, format)              \
   layout(std430, binding = index) buffer name##Block { Element name[]; }; \
+  WP_GLSL_STORAGE_LOADER_##format(name, Element)
+// A storage buffer's loader reads the buffer itself, or for VIEWED its texel view (a later row
+// declares it): on lavapipe a storage-buffer load is a loop over the lanes for each
+// component, a texel fetch one gather of the whole texel.
+#define WP_GLSL_STORAGE_LOADER_NONE(name, Element) \
   Element name##At(uint i) { return name[i]; }
+#define WP_GLSL_STORAGE_LOADER_VIEWED(name, Element)
 #define WP_GLSL_WRITE(name, index, Element, stride, format) \
   layout(std430, binding = index) writeonly buffer name##Block { Element name[]; };
 #define WP_GLSL_TEXELS(name, index, Element, stride, format) \

@@ -78,8 +78,9 @@ struct VulkanPushConstants {
 // queue (shade.comp).
 constexpr uint64_t kVulkanBytesPerPath = kBytesPerPath + sizeof(uint32_t);
 
-// Storage for the queues, also read as texels by the next stage.
-constexpr VkBufferUsageFlags kQueueUsage =
+// Storage for the queues and the paths' radiance and features, also read as texels (the
+// TEXEL_VIEW rows of binding_table.h).
+constexpr VkBufferUsageFlags kViewedStorageUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 
 }  // namespace
@@ -358,11 +359,11 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   bool resized = rays_.handle() == VK_NULL_HANDLE || hits_.size() < maxPaths * sizeof(gpu::HitRecord);
   if (resized) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    rays_ = VulkanBuffer(*context_, 2ull * maxPaths * sizeof(gpu::PathRay), kQueueUsage, false);
-    hits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::HitRecord), kQueueUsage, false);
-    shadowRays_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::ShadowRay), kQueueUsage, false);
-    pathRadiance_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(glm::vec4), storage, false);
-    pathFeatures_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::PathFeatures), storage, false);
+    rays_ = VulkanBuffer(*context_, 2ull * maxPaths * sizeof(gpu::PathRay), kViewedStorageUsage, false);
+    hits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::HitRecord), kViewedStorageUsage, false);
+    shadowRays_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::ShadowRay), kViewedStorageUsage, false);
+    pathRadiance_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(glm::vec4), kViewedStorageUsage, false);
+    pathFeatures_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(gpu::PathFeatures), kViewedStorageUsage, false);
     deferredHits_ = VulkanBuffer(*context_, uint64_t(maxPaths) * sizeof(uint32_t), storage, false);
     counters_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters),
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
@@ -382,8 +383,8 @@ void VulkanBackend::writeDescriptors() {
   buffers[gpu::Binding::rays] = buffers[gpu::Binding::raysTexelView] = &rays_;
   buffers[gpu::Binding::hits] = buffers[gpu::Binding::hitsTexelView] = &hits_;
   buffers[gpu::Binding::shadowRays] = buffers[gpu::Binding::shadowRaysTexelView] = &shadowRays_;
-  buffers[gpu::Binding::pathRadiance] = &pathRadiance_;
-  buffers[gpu::Binding::pathFeatures] = &pathFeatures_;
+  buffers[gpu::Binding::pathRadiance] = buffers[gpu::Binding::pathRadianceTexelView] = &pathRadiance_;
+  buffers[gpu::Binding::pathFeatures] = buffers[gpu::Binding::pathFeaturesTexelView] = &pathFeatures_;
   buffers[gpu::Binding::counters] = &counters_;
   buffers[gpu::Binding::deferredHits] = &deferredHits_;
   buffers[gpu::Binding::accumulation] = &accumulation_;
