@@ -21,8 +21,8 @@
 //   access    UNIFORM (the render parameters; Vulkan reads them at an entry given by a push
 //             constant, bindings.glsl says why), TEXELS (read-only; a scene array), STORAGE
 //             (read and written), WRITE (a queue the stage appends to), TEXEL_VIEW (Vulkan:
-//             the buffer of the same name again, read as texels: a queue by the next stage, the
-//             paths' radiance and features by the stages that add to them), CONSTANT
+//             the buffer of the same name again, read as texels: a queue by the next stage,
+//             the paths' radiance and features by the stages that add to them), CONSTANT
 //             (read-only texels the backend uploads once from a header's table);
 //   backends  ALL, or VULKAN for what OpenCL and C++ do without (their kernels read a buffer
 //             through the buffer's own pointer, and shade every material class in one go): no

@@ -59,7 +59,7 @@ layout(push_constant) uniform Push {
 
 WP_BINDINGS(WP_GLSL_BINDING)
 
-// The render parameters, where the stages take them (bindings.glsl's uniform block above).
+// The render parameters, as the stages take them (from the uniform block above).
 RenderParams renderParams() { return paramsEntries[paramsEntry]; }
 
 // The BSDF's constant tables (bsdf_table_lookup.h reads WP_BSDF_TABLE; C++ and OpenCL
