@@ -6,7 +6,7 @@
 layout(local_size_x = WP_WORKGROUP_SIZE) in;
 
 // The dispatch's PassConstants, then the render parameters' entry in their uniform buffer
-// (always 0; VulkanPushConstants in vulkan_backend.cpp says why it is not a constant).
+// (always 0; WP_GLSL_UNIFORM below says why it is not a constant).
 layout(push_constant) uniform Push {
   PassConstants pc;
   uint paramsEntry;

@@ -52,11 +52,11 @@ uvec3 unpackAppendCounts(uint packed) { return uvec3(packed & 1023u, (packed >> 
 shared uint subgroupAppends[WP_WORKGROUP_SIZE];
 shared uvec3 workgroupFirstEntries;
 
-// This subgroup's first entry in each queue (x continuations, y shadow rays, z deferred hits),
+// This subgroup's first entry in each queue (x `continuations`, y `shadows`, z `deferred`),
 // given how many entries the subgroup appends to each (`subgroupCounts`, the same in all its
 // invocations). Every invocation of the workgroup must call it: it holds the workgroup's
 // barriers.
-uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
+uvec3 subgroupFirstEntries(WorkQueue continuations, WorkQueue shadows, WorkQueue deferred, uvec3 subgroupCounts) {
   if (subgroupElect()) {
     subgroupAppends[gl_SubgroupID] = packAppendCounts(subgroupCounts);
   }
@@ -72,12 +72,12 @@ uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
   }
   uvec3 total = unpackAppendCounts(all);
   if (gl_LocalInvocationIndex == 0u) {
-    workgroupFirstEntries.x = reserveQueueEntries(continuationQueue(renderParams(), pc), total.x);
-    workgroupFirstEntries.y = reserveQueueEntries(shadowQueue(pc.bounce), total.y);
+    workgroupFirstEntries.x = reserveQueueEntries(continuations, total.x);
+    workgroupFirstEntries.y = reserveQueueEntries(shadows, total.y);
     workgroupFirstEntries.z = 0u;
     if (total.z > 0u) {
       // The deferred hits' pipeline is dispatched over what the first appended.
-      workgroupFirstEntries.z = reserveQueueEntries(deferredShadeQueue(), total.z);
+      workgroupFirstEntries.z = reserveQueueEntries(deferred, total.z);
       atomicMax(counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH], dispatchGroups(workgroupFirstEntries.z + total.z));
       counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH + 1u] = 1u;  // every workgroup that appends writes the same
       counters[WP_COUNTER_DEFERRED_SHADE_DISPATCH + 2u] = 1u;
@@ -89,6 +89,9 @@ uvec3 subgroupFirstEntries(uvec3 subgroupCounts) {
 
 void main() {
   RenderParams params = renderParams();
+  WorkQueue continuations = continuationQueue(params, pc);
+  WorkQueue shadows = shadowQueue(pc.bounce);
+  WorkQueue deferred = deferredShadeQueue();
   uint i = gl_GlobalInvocationID.x;
   bool shades;
   bool defers = false;
@@ -99,7 +102,6 @@ void main() {
       shades = !defers;
     }
   } else {
-    WorkQueue deferred = deferredShadeQueue();
     shades = i < queueSize(deferred);
     if (shades) {
       i = deferredHitsAt(queueEntry(deferred, i));
@@ -111,19 +113,20 @@ void main() {
     r = shadeStage(params, pc, i);
   }
   bool extends = (r.flags & WP_SHADE_EXTEND) != 0u;
-  bool shadows = (r.flags & WP_SHADE_SHADOW) != 0u;
+  bool castsShadow = (r.flags & WP_SHADE_SHADOW) != 0u;
   uvec4 extendBallot = subgroupBallot(extends);
-  uvec4 shadowBallot = subgroupBallot(shadows);
+  uvec4 shadowBallot = subgroupBallot(castsShadow);
   uvec4 deferBallot = subgroupBallot(defers);
-  uvec3 first = subgroupFirstEntries(uvec3(subgroupBallotBitCount(extendBallot), subgroupBallotBitCount(shadowBallot),
-                                           subgroupBallotBitCount(deferBallot)));
+  uvec3 counts = uvec3(subgroupBallotBitCount(extendBallot), subgroupBallotBitCount(shadowBallot),
+                       subgroupBallotBitCount(deferBallot));
+  uvec3 first = subgroupFirstEntries(continuations, shadows, deferred, counts);
   if (extends) {
-    rays[queueEntry(continuationQueue(params, pc), first.x + subgroupBallotExclusiveBitCount(extendBallot))] = r.next;
+    rays[queueEntry(continuations, first.x + subgroupBallotExclusiveBitCount(extendBallot))] = r.next;
   }
-  if (shadows) {
-    shadowRays[queueEntry(shadowQueue(pc.bounce), first.y + subgroupBallotExclusiveBitCount(shadowBallot))] = r.shadow;
+  if (castsShadow) {
+    shadowRays[queueEntry(shadows, first.y + subgroupBallotExclusiveBitCount(shadowBallot))] = r.shadow;
   }
   if (defers) {
-    deferredHits[queueEntry(deferredShadeQueue(), first.z + subgroupBallotExclusiveBitCount(deferBallot))] = i;
+    deferredHits[queueEntry(deferred, first.z + subgroupBallotExclusiveBitCount(deferBallot))] = i;
   }
 }

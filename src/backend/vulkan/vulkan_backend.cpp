@@ -64,11 +64,8 @@ VkDescriptorType descriptorType(uint32_t binding) {
 // Bytes of one texel of the view a texel-buffer binding is read through (bindings.glsl).
 uint64_t texelBytes(uint32_t binding) { return gpu::kBindings[binding].format == gpu::TexelFormat::R32ui ? 4 : 16; }
 
-// The push constants of every stage (bindings.glsl): the dispatch's constants, then the entry
-// of the render parameters in their uniform buffer, always 0. The stages index the parameters
-// with it rather than with the constant 0 because lavapipe (Mesa 22.3) inlines uniform values
-// read at constant offsets into the shader and compiles it anew at every bind; an offset from
-// push constants is also uniform, so each parameter is one load for all lanes.
+// The push constants of every stage: the dispatch's constants, then the entry of the render
+// parameters in their uniform buffer, always 0 (bindings.glsl says why it is pushed).
 struct VulkanPushConstants {
   gpu::PassConstants pass;
   uint32_t paramsEntry;
