@@ -36,7 +36,7 @@ struct RenderOptions {
   float skyRotationDegrees = 0.0f;
   bool widthGiven = false;
   bool heightGiven = false;
-  std::string backend = "vulkan";
+  std::string backend;  // --backend; empty: not given (chooseBackendName decides)
   int device = -1;
   std::string clDispatch = "readback";  // OpenCL only: how queue-sized launches are sized (ClDispatch)
   bool validate = false;  // validation (Vulkan: Khronos layer); also WAVEPATH_VALIDATION=1

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/backend_factory.h"
 #include "app/commands.h"
 #include "backend/opencl/opencl_devices.h"
 #include "backend/vulkan/vulkan_context.h"
@@ -15,37 +16,38 @@ namespace {
 
 double gibibytes(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0 * 1024.0); }
 
-// Prints the Vulkan devices; false when there are none.
-bool printVulkanDevices() {
+// Prints the Vulkan devices and returns them.
+std::vector<VulkanDeviceInfo> printVulkanDevices() {
   std::printf("Vulkan devices:\n");
   std::vector<VulkanDeviceInfo> devices;
   try {
     devices = listVulkanDevices();
   } catch (const Error& e) {
     std::printf("  none: %s\n", e.what());
-    return false;
+    return {};
   }
   for (size_t i = 0; i < devices.size(); ++i) {
     const VulkanDeviceInfo& d = devices[i];
-    std::printf("  %zu: %s (%s), Vulkan %u.%u, %s, %.1f GiB device-local memory\n", i, d.name.c_str(), d.type.c_str(),
-                VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion), d.driver.c_str(),
-                gibibytes(d.deviceLocalBytes));
+    std::printf("  %zu: %s (%s), Vulkan %u.%u, %s, %.1f GiB device-local memory%s\n", i, d.name.c_str(),
+                d.type.c_str(), VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion),
+                d.driver.c_str(), gibibytes(d.deviceLocalBytes),
+                d.missing.empty() ? "" : ("; unusable: lacks " + d.missing).c_str());
     std::printf("     buffers: %s written (%s), %s read (maxMemoryAllocationSize), %u texels (maxTexelBufferElements)\n",
                 byteSize(d.limits.writable.bytes).c_str(), d.limits.writable.name.c_str(),
                 byteSize(d.limits.sceneArray.bytes).c_str(), d.maxTexelBufferElements);
   }
-  return !devices.empty();
+  return devices;
 }
 
-// Prints the OpenCL devices of every platform; false when there are none.
-bool printOpenClDevices() {
+// Prints the OpenCL devices of every platform and returns them.
+std::vector<OpenClDeviceInfo> printOpenClDevices() {
   std::printf("OpenCL devices:\n");
   std::vector<OpenClDeviceInfo> devices;
   try {
     devices = listOpenClDevices();
   } catch (const Error& e) {
     std::printf("  none: %s\n", e.what());
-    return false;
+    return {};
   }
   if (devices.empty()) {
     std::printf("  none: the OpenCL platforms have no devices\n");
@@ -58,7 +60,7 @@ bool printOpenClDevices() {
                 byteSize(d.maxAllocationBytes).c_str(), d.driverVersion.c_str(),
                 missing.empty() ? "" : ("; unusable: lacks " + missing).c_str());
   }
-  return !devices.empty();
+  return devices;
 }
 
 }  // namespace
@@ -69,12 +71,22 @@ CLI::App* addDevicesCommand(CLI::App& app) {
 }
 
 int runDevices() {
-  bool vulkan = printVulkanDevices();
-  bool opencl = printOpenClDevices();
-  if (!vulkan && !opencl) {
+  const std::string word = defaultBackendWord();  // a bad WAVEPATH_BACKEND fails before the lists
+  const std::vector<VulkanDeviceInfo> vulkan = printVulkanDevices();
+  const std::vector<OpenClDeviceInfo> openCl = printOpenClDevices();
+  if (vulkan.empty() && openCl.empty()) {
     std::fflush(stdout);
     throw Error("no Vulkan or OpenCL device found; install mesa-vulkan-drivers (lavapipe) or pocl-opencl-icd, or a "
                 "GPU driver");
+  }
+  const AutoBackend chosen = autoBackend(vulkan, openCl);
+  auto title = [](const std::string& backend) { return backend == "vulkan" ? "Vulkan" : "OpenCL"; };
+  if (word == "auto") {
+    std::printf("Renders without --backend run on %s (--backend auto: %s)\n", title(chosen.name),
+                chosen.reason.c_str());
+  } else {
+    std::printf("Renders without --backend run on %s (WAVEPATH_BACKEND); --backend auto would pick %s: %s\n",
+                title(word), title(chosen.name), chosen.reason.c_str());
   }
   return 0;
 }

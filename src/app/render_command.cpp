@@ -48,7 +48,7 @@ void resolveImageSize(RenderOptions& options, const Scene& scene) {
 // Seconds a render spends outside its passes, for --timings: on a big scene the set-up is
 // part of what a user waits for, and must stay small beside the tracing.
 struct TimeOutsidePasses {
-  double device = 0.0;  // the backend and its device opened
+  double device = 0.0;  // the backend chosen and its device opened
   double load = 0.0;    // the glTF file (and sky) read and checked
   double pack = 0.0;    // BVHs built and the scene packed (a later frame's: updated)
   double upload = 0.0;  // the scene and the path buffers put on the device
@@ -330,10 +330,13 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
                   "Paths in flight per pass (bounds GPU memory, ~200 bytes each; capped at what the device holds). "
                   "Default: 4194240 on a GPU, 1048576 on a CPU (lavapipe, PoCL)")
       ->check(CLI::Range(64u, 4194240u));
-  cmd->add_option("--backend", o.backend, "Compute backend: vulkan (the default) or opencl")
-      ->check(CLI::IsMember({"vulkan", "opencl"}));
+  cmd->add_option("--backend", o.backend,
+                  "Compute backend: vulkan, opencl, or auto (the default, or WAVEPATH_BACKEND's): Vulkan on a GPU, "
+                  "else OpenCL where it has a device (PoCL on a CPU: faster there than lavapipe), else Vulkan; "
+                  "'wavepath devices' says which")
+      ->check(CLI::IsMember({"auto", "vulkan", "opencl"}));
   cmd->add_option("--device", o.device,
-                  "Device index in the chosen backend's list from 'wavepath devices' (default: the most capable)")
+                  "Device index in the backend's list from 'wavepath devices' (default: the most capable)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--cl-dispatch", o.clDispatch,
                   "OpenCL only: launch extend, shade and connect at the queue lengths read back each bounce "
@@ -421,9 +424,10 @@ int runRender(RenderOptions o) {
   catchInterrupts();
 
   // The device first: a missing or unusable one is one error line before any scene work.
-  BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   TimeOutsidePasses outside;
   auto start = std::chrono::steady_clock::now();
+  o.backend = chooseBackendName(o.backend);
+  BackendChoice choice{o.backend, o.device, validate, o.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);
   outside.device = secondsSince(start);
   start = std::chrono::steady_clock::now();

@@ -408,6 +408,7 @@ int runView(ViewOptions v) {
   PreparedScene prepared = prepareScene(v.render);
   Window window(v.render.settings.width, v.render.settings.height,
                 "wavepath view " + std::filesystem::path(v.render.scene).filename().string());
+  v.render.backend = chooseBackendName(v.render.backend);
   BackendChoice choice{v.render.backend, v.render.device, validate, v.render.clDispatch};
   std::unique_ptr<Backend> backend = createBackend(choice);
   InputTracker tracker;

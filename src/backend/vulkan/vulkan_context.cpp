@@ -188,6 +188,8 @@ VulkanDeviceInfo describe(VkPhysicalDevice device) {
   VulkanDeviceInfo info;
   info.name = props.properties.deviceName;
   info.type = typeName(props.properties.deviceType);
+  info.gpu = typeRank(props.properties.deviceType) >= typeRank(VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU);
+  info.missing = missingRequirement(device);
   info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
   info.apiVersion = props.properties.apiVersion;
   uint64_t largestHeap = 0;

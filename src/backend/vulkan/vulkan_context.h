@@ -14,6 +14,8 @@ namespace wp {
 struct VulkanDeviceInfo {
   std::string name;
   std::string type;    // "discrete GPU", "integrated GPU", "CPU", ...
+  bool gpu = false;    // a discrete, integrated or virtual GPU (not a CPU implementation such as lavapipe)
+  std::string missing;  // what it lacks to run the stages (Vulkan 1.1, subgroup operations...); empty: nothing
   std::string driver;  // driver name and version text
   uint32_t apiVersion = 0;
   uint64_t deviceLocalBytes = 0;
