@@ -30,6 +30,7 @@ OpenClDeviceInfo openClDevice(const std::string& name, const std::string& type, 
   device.languageVersion = "OpenCL C 1.2 ";
   device.compilerAvailable = compiler;
   device.maxWorkGroupSize = 4096;
+  device.rank = type == "GPU" ? 3 : 1;  // as listOpenClDevices ranks them
   return device;
 }
 
@@ -49,7 +50,10 @@ TEST(AutoBackend, OpenClWhereVulkanHasOnlyACpu) {
 
 TEST(AutoBackend, AGpuWithAnOpenClDriverAloneIsOpenCl) {
   EXPECT_EQ(autoBackend({}, {openClDevice("gfx1100", "GPU")}).name, "opencl");
-  EXPECT_EQ(autoBackend({kLavapipe}, {kPocl, openClDevice("gfx1100", "GPU")}).name, "opencl");
+  // The reason names the device OpenCL will take, the GPU, though PoCL is listed first.
+  const AutoBackend chosen = autoBackend({kLavapipe}, {kPocl, openClDevice("gfx1100", "GPU")});
+  EXPECT_EQ(chosen.name, "opencl");
+  EXPECT_NE(chosen.reason.find("gfx1100"), std::string::npos) << chosen.reason;
 }
 
 TEST(AutoBackend, AVulkanGpuThatCannotRunTheStagesDoesNotCount) {

@@ -39,13 +39,15 @@ std::vector<OpenClDeviceInfo> openClDevicesOrNone() {
 
 AutoBackend autoBackend(const std::vector<VulkanDeviceInfo>& vulkan, const std::vector<OpenClDeviceInfo>& openCl) {
   if (const VulkanDeviceInfo* gpu = usableVulkanGpu(vulkan)) return {"vulkan", "Vulkan has a GPU, " + gpu->name};
+  // The device OpenCL would take (chooseOpenClDevice: the best rank among the usable ones).
+  const OpenClDeviceInfo* best = nullptr;
   for (const OpenClDeviceInfo& device : openCl) {
-    if (!missingRequirement(device).empty()) continue;
-    const std::string vulkanLacks = vulkan.empty() ? "Vulkan has no device" : "Vulkan has no GPU";
-    const std::string why = device.type == "CPU" ? ", which traces faster than a Vulkan CPU device" : "";
-    return {"opencl", vulkanLacks + ", and OpenCL has " + device.name + why};
+    if (missingRequirement(device).empty() && (!best || device.rank > best->rank)) best = &device;
   }
-  return {"vulkan", openCl.empty() ? "OpenCL has no device" : "OpenCL has no usable device"};
+  if (!best) return {"vulkan", openCl.empty() ? "OpenCL has no device" : "OpenCL has no usable device"};
+  const std::string vulkanLacks = vulkan.empty() ? "Vulkan has no device" : "Vulkan has no GPU";
+  const std::string why = best->type == "CPU" ? ", which traces faster than a Vulkan CPU device" : "";
+  return {"opencl", vulkanLacks + ", and OpenCL has " + best->name + why};
 }
 
 std::string defaultBackendWord() {
