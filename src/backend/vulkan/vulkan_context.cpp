@@ -255,10 +255,10 @@ VulkanContext::VulkanContext(int deviceIndex, bool validation) {
     physicalDevice = devices[best];
     vkGetPhysicalDeviceProperties(physicalDevice, &properties);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice, &memoryProperties);
-    limits = withBufferCap(describe(physicalDevice).limits);
-    std::string missing = missingRequirement(physicalDevice);
-    if (!missing.empty()) {
-      throw Error(std::string("Vulkan device '") + properties.deviceName + "' lacks " + missing +
+    const VulkanDeviceInfo info = describe(physicalDevice);
+    limits = withBufferCap(info.limits);
+    if (!info.missing.empty()) {
+      throw Error(std::string("Vulkan device '") + properties.deviceName + "' lacks " + info.missing +
                   "; pick another with --device (see 'wavepath devices') or update its driver");
     }
     queueFamily = static_cast<uint32_t>(computeQueueFamily(physicalDevice));
