@@ -29,6 +29,17 @@ WP_FN SurfaceMaterial surfaceMaterialOf(GpuMaterial m) {
   return s;
 }
 
+// `m` with every microfacet lobe (the base's metal, specular layer and glass, and the clear
+// coat) at least `floorRoughness` rough (perceptual): filter glossy (glossyFloorRoughness,
+// integrator.h). Sheen and the diffuse base are not microfacet lobes and keep theirs, as in
+// Cycles, but the seed's Disney diffuse (WP_MATERIAL_GLTF_DISNEY_DIFFUSE) shares the base's
+// roughness and follows it.
+WP_FN GpuMaterial withGlossyFloor(GpuMaterial m, float floorRoughness) {
+  m.surface.y = max(m.surface.y, floorRoughness);
+  m.clearcoat.y = max(m.clearcoat.y, floorRoughness);
+  return m;
+}
+
 // Lambert, two-sided: albedo / pi into wo's hemisphere, sampled by the cosine.
 WP_FN BsdfEval evalLambert(vec3 albedo, vec3 wo, vec3 wi) {
   float side = sideOf(wo);

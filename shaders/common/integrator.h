@@ -44,6 +44,35 @@ WP_FN vec3 clampedContribution(RenderParams params, vec3 c) {
   return limit > 0.0f ? clampContribution(c, limit) : c;
 }
 
+// ---- Filter glossy (RenderParams.filterGlossy, 0 = off): biased, as Cycles' ------------
+// A diffuse bounce followed by a sharp glossy one that then finds a small light (the sun's
+// highlight on a glossy sphere, seen from the ground) is a path that BSDF sampling finds
+// rarely and next event estimation weighs hugely: fireflies that converge slowly. Cycles
+// blurs such lobes, and its default (Filter Glossy 1) is what a Blender user compares
+// with; wavepath does the same on request, with Cycles' rule and meaning of the value
+// (surface_shader_prepare_closures, Cycles 3.4): the least pdf p of the path's BSDF samples
+// so far (delta samples excluded), and where p / filterGlossy < 1 every microfacet lobe's
+// alpha at least sqrt(1 - p / filterGlossy) / 2. A camera ray's first vertex and what only
+// delta bounces led to are never blurred.
+
+// p is carried in the ray's 16 spare flag bits (layout.h) as the upper half of its float's
+// bits: for positive floats those order as the floats do, so the least of them is that of
+// the least pdf, cut to 8 bits of mantissa (a heuristic's input), the same on every backend.
+WP_FN uint leastPdfBitsAfter(uint leastPdfBits, float pdf) {
+  uint bits = max(asUint(pdf) >> 16u, 1u);  // 0 means none yet
+  return leastPdfBits == 0u ? bits : min(leastPdfBits, bits);
+}
+
+// The perceptual roughness (sqrt of alpha) every microfacet lobe of the vertex gets at least,
+// for a path whose least BSDF-sample pdf so far is leastPdfBits; 0: none.
+WP_FN float glossyFloorRoughness(RenderParams params, uint leastPdfBits) {
+  if (!(params.filterGlossy > 0.0f) || leastPdfBits == 0u) {
+    return 0.0f;
+  }
+  float blurPdf = asFloat(leastPdfBits << 16u) / params.filterGlossy;
+  return blurPdf < 1.0f ? sqrt(0.5f * sqrt(1.0f - blurPdf)) : 0.0f;
+}
+
 // A ray that left the scene sees the sky. Next event estimation samples the sky with
 // probability sky.selectionProbability, so a BSDF-sampled ray's sky radiance is weighed
 // against that.
@@ -179,6 +208,7 @@ WP_STRUCT(PathVertex)
   uint pathSlot;
   uint bounce;
   uint rayFlags;    // WP_RAY_* flags the continuation carries
+  uint leastPdfBits;  // the least pdf of the path's BSDF samples so far (leastPdfBitsAfter)
 WP_STRUCT_END(PathVertex)
 
 // What a vertex may send on: the path's continuation, and its light sample's shadow ray
@@ -210,6 +240,7 @@ WP_FN_INLINED PathVertex pathVertexAt(SurfaceHit s, vec3 wo, vec3 throughput, Pa
   v.pathSlot = rayPathSlot(ray);
   v.bounce = rayBounce(ray);
   v.rayFlags = rayFlagsOf(ray);
+  v.leastPdfBits = rayLeastPdfBits(ray);
   return v;
 }
 
@@ -347,8 +378,9 @@ WP_FN_INLINED NextRay sampleContinuation(RenderParams params, PathVertex v, GpuM
       vec3 origin = offsetRayOrigin(v.position, v.normal, wi);
       nextThroughput = nextThroughput / survival;
       float rayPdf = isDelta ? 0.0f : bs.pdf;
+      uint leastPdfBits = isDelta ? v.leastPdfBits : leastPdfBitsAfter(v.leastPdfBits, bs.pdf);
       next.ray = makePathRay(origin, v.pathSlot, wi, rayPdf, nextThroughput, v.time, draws.samples, v.bounce + 1u,
-                             v.rayFlags);
+                             v.rayFlags, leastPdfBits);
       next.exists = true;
     }
   }
@@ -413,6 +445,7 @@ WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, 
   if (bounce > params.maxBounces) {
     return r;
   }
+  m = withGlossyFloor(m, glossyFloorRoughness(params, rayLeastPdfBits(ray)));
 
   PathVertex v = pathVertexAt(s, wo, throughput, ray);
   if (takesFeatures) {

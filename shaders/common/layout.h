@@ -505,7 +505,9 @@ WP_STRUCT(RenderParams)
   // records them and accumulate sums them. 0 (a PNG, an EXR without passes):
   // neither, and the accumulation's feature layers stay zero (recordsFeaturePasses).
   uint featurePasses;
-  uint unused0;  // to a whole number of 16-byte texels (binding_table.h)
+  // Cycles' Filter Glossy (glossyFloorRoughness, integrator.h): biased, roughens the glossy
+  // lobes a path reaches after unlikely bounces; 0: off.
+  float filterGlossy;
   uint unused1;
   uint unused2;
 WP_STRUCT_END(RenderParams)
@@ -520,7 +522,9 @@ WP_FN bool recordsFeaturePasses(RenderParams p) { return WP_RENDER_FEATURE_PASSE
 //   direction: xyz: unit; w: solid-angle pdf of the BSDF sample (0: camera ray)
 //   throughput: rgb; w: the path's shutter time in [0, 1) (motion blur)
 //   state: x: the sampler's state (PathSamples), y: bounce of the vertex this ray will hit,
-//     z: WP_RAY_* flags, w: the path's sample index in its pixel
+//     z: WP_RAY_* flags in the low 16 bits; in the high 16 the least pdf of the path's BSDF
+//     samples so far (leastPdfBits, integrator.h; 0: none yet), w: the path's sample index
+//     in its pixel
 #define WP_FIELDS_PathRay(F) \
   F(vec4, origin)            \
   F(vec4, direction)         \
@@ -544,15 +548,16 @@ WP_FN PathSamples rayPathSamples(PathRay r) {
 WP_FN uint rayBounce(PathRay r) { return r.state.y; }
 // PathRay flags.
 #define WP_RAY_FEATURES_TAKEN 1u  // the path's feature passes are recorded (PathFeatures)
-WP_FN uint rayFlagsOf(PathRay r) { return r.state.z; }
+WP_FN uint rayFlagsOf(PathRay r) { return r.state.z & 0xffffu; }
 WP_FN bool rayFeaturesTaken(PathRay r) { return (rayFlagsOf(r) & WP_RAY_FEATURES_TAKEN) != 0u; }
+WP_FN uint rayLeastPdfBits(PathRay r) { return r.state.z >> 16u; }
 WP_FN PathRay makePathRay(vec3 origin, uint pathSlot, vec3 direction, float bsdfPdf, vec3 throughput, float time,
-                          PathSamples samples, uint bounce, uint flags) {
+                          PathSamples samples, uint bounce, uint flags, uint leastPdfBits) {
   PathRay r;
   r.origin = make_vec4(origin.x, origin.y, origin.z, asFloat(pathSlot));
   r.direction = make_vec4(direction.x, direction.y, direction.z, bsdfPdf);
   r.throughput = make_vec4(throughput.x, throughput.y, throughput.z, time);
-  r.state = make_uvec4(samples.state, bounce, flags, samples.sampleIndex);
+  r.state = make_uvec4(samples.state, bounce, flags | (leastPdfBits << 16u), samples.sampleIndex);
   return r;
 }
 

@@ -42,7 +42,7 @@ WP_FN_INLINED PathRay cameraPathRay(RenderParams params, PassConstants pc, uint 
   vec2 film = make_vec2(toFloat(pixel % width), toFloat(pixel / width)) + draws.film;
   CameraRay camera = sampleThinLensRay(params.camera, film, width, params.height, draws.lens);
   return makePathRay(camera.origin, slot, camera.direction, 0.0f, make_vec3(1.0f, 1.0f, 1.0f), draws.time,
-                     draws.samples, 0u, 0u);
+                     draws.samples, 0u, 0u, 0u);
 }
 
 // The closest hit of `ray`, as shade reads it.

@@ -319,6 +319,10 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
   cmd->add_option("--clamp", s.contributionClamp,
                   "Biased: clamp the luminance of each contribution but emission seen by the camera (0 = off)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--filter-glossy", s.filterGlossy,
+                  "Biased, as Cycles' Filter Glossy (Cycles' default 1): roughen glossy surfaces that a path reaches "
+                  "after unlikely bounces, for fewer fireflies (0 = off)")
+      ->check(CLI::NonNegativeNumber);
   static const std::map<std::string, LightSelection> selections = {{"power", LightSelection::Power},
                                                                    {"solid-angle", LightSelection::SolidAngle}};
   cmd->add_option("--light-selection", s.lightSelection,

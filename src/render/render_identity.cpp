@@ -19,6 +19,8 @@ std::string settingsFlags(const RenderSettings& s) {
   const char* mode = s.mode == IntegratorMode::Mis ? "mis" : s.mode == IntegratorMode::NeeOnly ? "nee" : "bsdf";
   char clamp[32];
   std::snprintf(clamp, sizeof(clamp), "%.9g", double(s.contributionClamp));
+  char filterGlossy[32];
+  std::snprintf(filterGlossy, sizeof(filterGlossy), "%.9g", double(s.filterGlossy));
   char adaptive[32];
   std::snprintf(adaptive, sizeof(adaptive), "%.9g", double(s.adaptiveThreshold));
   std::string flags = "--width " + std::to_string(s.width) + " --height " + std::to_string(s.height) +
@@ -27,6 +29,7 @@ std::string settingsFlags(const RenderSettings& s) {
                       " --mode " + mode + " --rr-start " + std::to_string(s.russianRouletteStart) +
                       " --light-selection " +
                       (s.lightSelection == LightSelection::Power ? "power" : "solid-angle") + " --clamp " + clamp +
+                      " --filter-glossy " + filterGlossy +
                       " --sky-sampling " + (s.skySampling ? "on" : "off") + " --adaptive " + adaptive +
                       " --adaptive-min-samples " + std::to_string(s.adaptiveMinSamples) +
                       // Recorded or not (a PNG's render records none), not the EXR's choice among them.

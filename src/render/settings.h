@@ -62,6 +62,9 @@ struct RenderSettings {
   // Biased: scale each contribution but emission seen by the camera down to at most this
   // luminance (0 = off), trading energy for fewer fireflies.
   float contributionClamp = 0.0f;
+  // Biased, as Cycles' Filter Glossy (its default 1; shaders/common/integrator.h): roughens the
+  // glossy lobes a path reaches after unlikely bounces (0 = off).
+  float filterGlossy = 0.0f;
   // Adaptive sampling (shaders/common/accumulation.h): from adaptiveMinSamples on, a pixel
   // whose estimated relative error is below adaptiveThreshold receives no more samples
   // (0: off, every pixel gets every sample).

@@ -46,6 +46,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const GpuScene& gpuScene,
   p.bsdfFlags = (settings.widenRoughness ? WP_BSDF_WIDEN_BECKMANN : 0u) |
                 (settings.fixedLobeChoice ? WP_BSDF_FIXED_LOBE_CHOICE : 0u);
   p.contributionClamp = settings.contributionClamp;
+  p.filterGlossy = settings.filterGlossy;
   p.lightSelection = settings.lightSelection == LightSelection::SolidAngle ? WP_LIGHT_SELECTION_SOLID_ANGLE
                                                                             : WP_LIGHT_SELECTION_POWER;
   p.punctualLightCount = gpuScene.punctualLightCount;
