@@ -5,7 +5,8 @@ Measurement only (needs `apt-get install blender python3-numpy`; never used by t
 or the tests):
     blender -b --factory-startup -noaudio -P tools/blender/import_and_render.py -- IN.gltf OUT.exr SPP WIDTH HEIGHT
 renders through the file's first camera with a box filter, 8 bounces, a black world and no
-adaptive sampling.
+adaptive sampling. Blender's other defaults stay, among them two biased ones: Filter Glossy 1
+(wavepath's --filter-glossy 1 is the same rule) and Clamp Indirect 10.
 """
 import numpy; numpy.bool = bool  # Blender 3.4's importer expects an older numpy
 import bpy, sys
