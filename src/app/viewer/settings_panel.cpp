@@ -83,6 +83,9 @@ bool drawSettingsPanel(const PanelInfo& info, PanelControls& c) {
     s.russianRouletteStart = c.russianRoulette ? c.russianRouletteStart : std::numeric_limits<uint32_t>::max();
     restart = true;
   }
+  // Biased (--filter-glossy; Blender's default is 1): fewer fireflies from glossy highlights.
+  restart |= ImGui::SliderFloat("filter glossy", &s.filterGlossy, 0.0f, 10.0f, s.filterGlossy > 0.0f ? "%.2f" : "off",
+                                ImGuiSliderFlags_AlwaysClamp);
 
   ImGui::Separator();
   ImGui::SliderFloat("exposure (stops)", &c.exposureStops, -10.0f, 10.0f, "%+.1f");
