@@ -12,6 +12,7 @@
 
 #include "app/backend_factory.h"
 #include "bvh/gpu_scene.h"
+#include "render/render_identity.h"
 #include "render/wavefront.h"
 #include "shaders/common/stages.h"
 #include "scene/gltf_loader.h"
@@ -143,6 +144,22 @@ Scene sunAndGlossySpheres() {
     {"pbrMetallicRoughness": {"baseColorFactor": [0.35, 0.45, 0.3, 1], "metallicFactor": 0, "roughnessFactor": 0.9}},
     {"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.55, 0.4, 1], "metallicFactor": 0, "roughnessFactor": 0.3}}]})";
   return loadScene(dir / "scene.gltf");
+}
+
+TEST(FilterGlossy, IsPartOfARendersIdentityOnlyWhenOn) {
+  // A checkpoint or a part written with the filter cannot resume or merge with one without;
+  // off, the settings read as an earlier build wrote them, so its checkpoints still resume.
+  const Scene scene = sunAndGlossySpheres();
+  const GpuScene gpuScene = packScene(scene);
+  RenderSettings off;
+  RenderSettings on = off;
+  on.filterGlossy = 1.0f;
+  const RenderIdentity offIdentity = renderIdentity(gpuScene, makeRenderParams(scene, gpuScene, off), off);
+  const RenderIdentity onIdentity = renderIdentity(gpuScene, makeRenderParams(scene, gpuScene, on), on);
+  EXPECT_EQ(offIdentity.settings.find("--filter-glossy"), std::string::npos) << offIdentity.settings;
+  EXPECT_NE(onIdentity.settings.find("--filter-glossy 1"), std::string::npos) << onIdentity.settings;
+  EXPECT_NE(offIdentity.sceneHash, onIdentity.sceneHash);
+  EXPECT_EQ(identityDifference(offIdentity, onIdentity), "--filter-glossy is unset there, 1 here");
 }
 
 class FilterGlossyRender : public ::testing::TestWithParam<std::string> {};

@@ -19,8 +19,6 @@ std::string settingsFlags(const RenderSettings& s) {
   const char* mode = s.mode == IntegratorMode::Mis ? "mis" : s.mode == IntegratorMode::NeeOnly ? "nee" : "bsdf";
   char clamp[32];
   std::snprintf(clamp, sizeof(clamp), "%.9g", double(s.contributionClamp));
-  char filterGlossy[32];
-  std::snprintf(filterGlossy, sizeof(filterGlossy), "%.9g", double(s.filterGlossy));
   char adaptive[32];
   std::snprintf(adaptive, sizeof(adaptive), "%.9g", double(s.adaptiveThreshold));
   std::string flags = "--width " + std::to_string(s.width) + " --height " + std::to_string(s.height) +
@@ -29,13 +27,19 @@ std::string settingsFlags(const RenderSettings& s) {
                       " --mode " + mode + " --rr-start " + std::to_string(s.russianRouletteStart) +
                       " --light-selection " +
                       (s.lightSelection == LightSelection::Power ? "power" : "solid-angle") + " --clamp " + clamp +
-                      " --filter-glossy " + filterGlossy +
                       " --sky-sampling " + (s.skySampling ? "on" : "off") + " --adaptive " + adaptive +
                       " --adaptive-min-samples " + std::to_string(s.adaptiveMinSamples) +
                       // Recorded or not (a PNG's render records none), not the EXR's choice among them.
                       " --passes " + (s.featurePasses ? "all" : "none") + " --widen-roughness " +
                       (s.widenRoughness ? "on" : "off") + " --fixed-lobe-choice " +
                       (s.fixedLobeChoice ? "on" : "off");
+  // Settings added later are named only when set, so that a checkpoint or a part that an
+  // earlier build wrote with them off still resumes and merges.
+  if (s.filterGlossy != 0.0f) {
+    char filterGlossy[32];
+    std::snprintf(filterGlossy, sizeof(filterGlossy), "%.9g", double(s.filterGlossy));
+    flags += std::string(" --filter-glossy ") + filterGlossy;
+  }
   return flags;
 }
 
