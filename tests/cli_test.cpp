@@ -196,6 +196,21 @@ TEST(BadFlags, AreRejectedWithUsageHint) {
   }
 }
 
+TEST(BadFlags, ANumberOutOfItsRangeSaysWhatItMustBe) {
+  // CLI11's own checks printed the range up to the largest double.
+  std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
+  for (const auto& [flag, phrase] : std::vector<std::pair<const char*, const char*>>{
+           {"--clamp", "--clamp: '-1' must be 0 or more"},
+           {"--filter-glossy", "--filter-glossy: '-1' must be 0 or more"},
+           {"--focus-distance", "--focus-distance: '-1' must be more than 0"},
+       }) {
+    SCOPED_TRACE(flag);
+    RunResult r = runWavepath({"render", scene.string(), flag, "-1"}, {}, 60);
+    expectOneErrorLine(r, phrase, 2);
+    EXPECT_EQ(r.err.find("179769"), std::string::npos) << r.err;
+  }
+}
+
 TEST(BadOutput, MissingDirectoryAndUnknownFormatFailBeforeRendering) {
   std::filesystem::path scene = sourceDirectory() / "assets" / "cornell-box.gltf";
   std::filesystem::path dir = scratchDirectory("bad-output");

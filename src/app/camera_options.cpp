@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/number_checks.h"
 #include "core/error.h"
 #include "render/camera_lens.h"
 #include "shaders/common/exposure.h"
@@ -17,7 +18,7 @@ void addCameraFlags(CLI::App& cmd, CameraFlags& f) {
       ->check(CLI::Range(0.5f, 1024.0f));
   cmd.add_option("--focus-distance", f.focusDistance,
                  "Focus distance in scene units (default: what the image centre sees)")
-      ->check(CLI::PositiveNumber);
+      ->check(moreThanZero());
   cmd.add_option("--focal-length", f.focalLengthMm,
                  "Focal length in mm on the 36x24 mm sensor (default: from the glTF field of view)")
       ->check(CLI::Range(1.0f, 10000.0f));

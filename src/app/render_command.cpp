@@ -15,6 +15,7 @@
 #include "app/backend_factory.h"
 #include "app/interrupt.h"
 #include "app/commands.h"
+#include "app/number_checks.h"
 #include "app/frame_parts.h"
 #include "app/frame_sequence.h"
 #include "app/pose_uploader.h"
@@ -233,7 +234,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "whose run of '#' becomes the zero-padded frame number (e.g. -o out_####.png)")
       ->check(parsedBy([](const std::string& text) { parseFrameRange(text); }, "A..B"))
       ->excludes(cmd->get_option("--time"));
-  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(CLI::PositiveNumber);
+  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)")->check(moreThanZero());
   cmd->add_option("--samples", o.samples,
                   "Render only samples A..B (inclusive, numbered from 0) of --spp: a batch of a frame split over "
                   "machines, to combine with 'wavepath merge'")
@@ -318,11 +319,11 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
                 "For comparisons: plastic picks specular or diffuse 50/50 instead of by Fresnel (still unbiased)");
   cmd->add_option("--clamp", s.contributionClamp,
                   "Biased: clamp the luminance of each contribution but emission seen by the camera (0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(zeroOrMore());
   cmd->add_option("--filter-glossy", s.filterGlossy,
                   "Biased, as Cycles' Filter Glossy (Cycles' default 1): roughen glossy surfaces that a path reaches "
                   "after unlikely bounces, for fewer fireflies (0 = off)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(zeroOrMore());
   static const std::map<std::string, LightSelection> selections = {{"power", LightSelection::Power},
                                                                    {"solid-angle", LightSelection::SolidAngle}};
   cmd->add_option("--light-selection", s.lightSelection,
@@ -341,7 +342,7 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
       ->check(CLI::IsMember({"auto", "vulkan", "opencl"}));
   cmd->add_option("--device", o.device,
                   "Device index in the backend's list from 'wavepath devices' (default: the most capable)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(zeroOrMore());
   cmd->add_option("--cl-dispatch", o.clDispatch,
                   "OpenCL only: launch extend, shade and connect at the queue lengths read back each bounce "
                   "(readback, the default, faster on PoCL) or at every path of the pass, the work items past the "
