@@ -15,11 +15,12 @@
 namespace wp {
 namespace {
 
-VulkanDeviceInfo vulkanDevice(const std::string& name, bool gpu, const std::string& missing = "") {
+VulkanDeviceInfo vulkanDevice(const std::string& name, bool gpu, const std::string& missing = "", int rank = 0) {
   VulkanDeviceInfo device;
   device.name = name;
   device.type = gpu ? "discrete GPU" : "CPU";
   device.gpu = gpu;
+  device.rank = rank > 0 ? rank : gpu ? 4 : 1;  // as describe ranks a discrete GPU and a CPU
   device.missing = missing;
   return device;
 }
@@ -42,6 +43,14 @@ const OpenClDeviceInfo kPocl = openClDevice("pthread-cpu", "CPU");
 TEST(AutoBackend, VulkanWhereItHasAGpu) {
   EXPECT_EQ(autoBackend({kLavapipe, vulkanDevice("NVIDIA H200", true)}, {kPocl, openClDevice("NVIDIA H200", "GPU")}).name,
             "vulkan");
+}
+
+TEST(AutoBackend, NamesTheGpuVulkanWillTake) {
+  // An integrated GPU (rank 3) listed before a discrete one: the render takes the discrete.
+  const AutoBackend chosen =
+      autoBackend({vulkanDevice("integrated", true, "", 3), vulkanDevice("discrete", true)}, {kPocl});
+  EXPECT_EQ(chosen.name, "vulkan");
+  EXPECT_NE(chosen.reason.find("discrete"), std::string::npos) << chosen.reason;
 }
 
 TEST(AutoBackend, OpenClWhereVulkanHasOnlyACpu) {

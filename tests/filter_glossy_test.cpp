@@ -22,9 +22,6 @@
 namespace wp::test {
 namespace {
 
-// The least pdf as the ray carries it: 8 bits of mantissa, cut towards 0.
-float carried(uint32_t bits) { return gpu::asFloat(bits << 16u); }
-
 gpu::RenderParams paramsWithFilter(float filterGlossy) {
   gpu::RenderParams params{};
   params.filterGlossy = filterGlossy;
@@ -35,7 +32,7 @@ TEST(FilterGlossy, FloorFollowsCyclesRule) {
   // After a cosine-sampled bounce at normal incidence (pdf 1 / pi), Filter Glossy 1 makes
   // every glossy lobe's alpha at least sqrt(1 - p) / 2, Cycles' blur roughness: about 0.41.
   const uint32_t diffuse = gpu::leastPdfBitsAfter(0u, 1.0f / float(M_PI));
-  const float p = carried(diffuse);
+  const float p = gpu::leastPdfOf(diffuse);
   EXPECT_NEAR(p, 1.0f / float(M_PI), 0.01f / float(M_PI)) << "8 bits of mantissa";
   EXPECT_LE(p, 1.0f / float(M_PI)) << "cut towards 0";
   const float floor = gpu::glossyFloorRoughness(paramsWithFilter(1.0f), diffuse);
@@ -53,10 +50,10 @@ TEST(FilterGlossy, FloorFollowsCyclesRule) {
 
 TEST(FilterGlossy, PathKeepsItsLeastPdf) {
   uint32_t bits = gpu::leastPdfBitsAfter(0u, 3.0f);
-  EXPECT_NEAR(carried(bits), 3.0f, 3.0f / 128.0f);
+  EXPECT_NEAR(gpu::leastPdfOf(bits), 3.0f, 3.0f / 128.0f);
   bits = gpu::leastPdfBitsAfter(bits, 0.5f);
-  EXPECT_EQ(carried(bits), 0.5f);
-  EXPECT_EQ(carried(gpu::leastPdfBitsAfter(bits, 7.0f)), 0.5f);
+  EXPECT_EQ(gpu::leastPdfOf(bits), 0.5f);
+  EXPECT_EQ(gpu::leastPdfOf(gpu::leastPdfBitsAfter(bits, 7.0f)), 0.5f);
   // A pdf too small for 16 bits still counts as a sample, not as none.
   EXPECT_NE(gpu::leastPdfBitsAfter(0u, 1e-42f), 0u);
   // The ray keeps its flags and the least pdf apart.

@@ -63,13 +63,16 @@ WP_FN uint leastPdfBitsAfter(uint leastPdfBits, float pdf) {
   return leastPdfBits == 0u ? bits : min(leastPdfBits, bits);
 }
 
+// The least pdf that leastPdfBits (not 0) holds.
+WP_FN float leastPdfOf(uint leastPdfBits) { return asFloat(leastPdfBits << 16u); }
+
 // The perceptual roughness (sqrt of alpha) every microfacet lobe of the vertex gets at least,
 // for a path whose least BSDF-sample pdf so far is leastPdfBits; 0: none.
 WP_FN float glossyFloorRoughness(RenderParams params, uint leastPdfBits) {
   if (!(params.filterGlossy > 0.0f) || leastPdfBits == 0u) {
     return 0.0f;
   }
-  float blurPdf = asFloat(leastPdfBits << 16u) / params.filterGlossy;
+  float blurPdf = leastPdfOf(leastPdfBits) / params.filterGlossy;
   return blurPdf < 1.0f ? sqrt(0.5f * sqrt(1.0f - blurPdf)) : 0.0f;
 }
 

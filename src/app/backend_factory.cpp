@@ -10,12 +10,11 @@
 namespace wp {
 namespace {
 
-// The first Vulkan GPU that can run the stages, or null.
+// The GPU Vulkan renders on without --device, or null where that device is not a GPU (a
+// usable GPU always ranks above a CPU implementation).
 const VulkanDeviceInfo* usableVulkanGpu(const std::vector<VulkanDeviceInfo>& vulkan) {
-  for (const VulkanDeviceInfo& device : vulkan) {
-    if (device.gpu && device.missing.empty()) return &device;
-  }
-  return nullptr;
+  const int best = mostCapableUsableDevice(vulkan);
+  return best >= 0 && vulkan[best].gpu ? &vulkan[best] : nullptr;
 }
 
 // The devices a backend has here: none where it has no loader, driver or device.
@@ -39,11 +38,8 @@ std::vector<OpenClDeviceInfo> openClDevicesOrNone() {
 
 AutoBackend autoBackend(const std::vector<VulkanDeviceInfo>& vulkan, const std::vector<OpenClDeviceInfo>& openCl) {
   if (const VulkanDeviceInfo* gpu = usableVulkanGpu(vulkan)) return {"vulkan", "Vulkan has a GPU, " + gpu->name};
-  // The device OpenCL would take (chooseOpenClDevice: the best rank among the usable ones).
-  const OpenClDeviceInfo* best = nullptr;
-  for (const OpenClDeviceInfo& device : openCl) {
-    if (missingRequirement(device).empty() && (!best || device.rank > best->rank)) best = &device;
-  }
+  const int bestIndex = mostCapableUsableDevice(openCl);  // the device OpenCL would take
+  const OpenClDeviceInfo* best = bestIndex >= 0 ? &openCl[bestIndex] : nullptr;
   if (!best) return {"vulkan", openCl.empty() ? "OpenCL has no device" : "OpenCL has no usable device"};
   const std::string vulkanLacks = vulkan.empty() ? "Vulkan has no device" : "Vulkan has no GPU";
   const std::string why = best->type == "CPU" ? ", which traces faster than a Vulkan CPU device" : "";

@@ -10,22 +10,19 @@
 
 namespace wp {
 
-inline CLI::Validator zeroOrMore() {
+// Accepts a number above 0, or with `zeroAllowed` of 0 or more.
+inline CLI::Validator lowerBoundCheck(bool zeroAllowed) {
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [zeroAllowed](std::string& text) -> std::string {
         double value = 0.0;
-        return CLI::detail::lexical_cast(text, value) && value >= 0.0 ? "" : "'" + text + "' must be 0 or more";
+        const bool parsed = CLI::detail::lexical_cast(text, value);
+        if (parsed && (value > 0.0 || (zeroAllowed && value == 0.0))) return "";
+        return "'" + text + (zeroAllowed ? "' must be 0 or more" : "' must be more than 0");
       },
-      "NONNEGATIVE");
+      zeroAllowed ? "NONNEGATIVE" : "POSITIVE");
 }
 
-inline CLI::Validator moreThanZero() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double value = 0.0;
-        return CLI::detail::lexical_cast(text, value) && value > 0.0 ? "" : "'" + text + "' must be more than 0";
-      },
-      "POSITIVE");
-}
+inline CLI::Validator zeroOrMore() { return lowerBoundCheck(true); }
+inline CLI::Validator moreThanZero() { return lowerBoundCheck(false); }
 
 }  // namespace wp

@@ -3,6 +3,7 @@
 
 #include <CL/cl_ext.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <utility>
@@ -136,6 +137,14 @@ std::string missingRequirement(const OpenClDeviceInfo& device) {
   return "";
 }
 
+int mostCapableUsableDevice(const std::vector<OpenClDeviceInfo>& devices) {
+  int best = -1;
+  for (size_t i = 0; i < devices.size(); ++i) {
+    if (missingRequirement(devices[i]).empty() && (best < 0 || devices[i].rank > devices[best].rank)) best = int(i);
+  }
+  return best;
+}
+
 OpenClDeviceInfo chooseOpenClDevice(int index) {
   std::vector<OpenClDeviceInfo> devices = listOpenClDevices();
   if (devices.empty()) {
@@ -146,17 +155,8 @@ OpenClDeviceInfo chooseOpenClDevice(int index) {
     throw Error("--device " + std::to_string(index) + " does not exist: there are " + std::to_string(devices.size()) +
                 " OpenCL devices; run 'wavepath devices' to list them");
   }
-  int chosen = index;
-  if (chosen < 0) {
-    int bestRank = -1;
-    for (size_t i = 0; i < devices.size(); ++i) {
-      int rank = missingRequirement(devices[i]).empty() ? devices[i].rank : -1;
-      if (rank > bestRank) {
-        bestRank = rank;
-        chosen = static_cast<int>(i);
-      }
-    }
-  }
+  // None usable: the first, whose missing requirement the error below names.
+  const int chosen = index >= 0 ? index : std::max(0, mostCapableUsableDevice(devices));
   const OpenClDeviceInfo& device = devices[chosen];
   std::string missing = missingRequirement(device);
   if (!missing.empty()) {

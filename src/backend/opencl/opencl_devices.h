@@ -40,6 +40,11 @@ std::string poclWorkGroupMethod();
 // WP_WORKGROUP_SIZE), or an empty string.
 std::string missingRequirement(const OpenClDeviceInfo& device);
 
+// The index of the best-ranked device of `devices` that meets the requirements, or -1: the
+// device a render takes without --device (chooseOpenClDevice), and the one `--backend auto`
+// weighs.
+int mostCapableUsableDevice(const std::vector<OpenClDeviceInfo>& devices);
+
 // The device --device `index` names (index < 0: the most capable one that meets the
 // requirements). Throws wp::Error when it does not exist or lacks a requirement.
 OpenClDeviceInfo chooseOpenClDevice(int index);

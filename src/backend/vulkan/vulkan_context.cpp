@@ -188,7 +188,8 @@ VulkanDeviceInfo describe(VkPhysicalDevice device) {
   VulkanDeviceInfo info;
   info.name = props.properties.deviceName;
   info.type = typeName(props.properties.deviceType);
-  info.gpu = typeRank(props.properties.deviceType) >= typeRank(VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU);
+  info.rank = typeRank(props.properties.deviceType);
+  info.gpu = info.rank >= typeRank(VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU);
   info.missing = missingRequirement(device);
   info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
   info.apiVersion = props.properties.apiVersion;
@@ -227,6 +228,14 @@ std::vector<VulkanDeviceInfo> listVulkanDevices() {
   return infos;
 }
 
+int mostCapableUsableDevice(const std::vector<VulkanDeviceInfo>& devices) {
+  int best = -1;
+  for (size_t i = 0; i < devices.size(); ++i) {
+    if (devices[i].missing.empty() && (best < 0 || devices[i].rank > devices[best].rank)) best = int(i);
+  }
+  return best;
+}
+
 VulkanContext::VulkanContext(int deviceIndex, bool validation) {
   instance = createVulkanInstance(validation, {});
   try {
@@ -241,16 +250,10 @@ VulkanContext::VulkanContext(int deviceIndex, bool validation) {
     }
     int best = deviceIndex;
     if (best < 0) {
-      int bestRank = -1;
-      for (size_t i = 0; i < devices.size(); ++i) {
-        VkPhysicalDeviceProperties p;
-        vkGetPhysicalDeviceProperties(devices[i], &p);
-        int rank = missingRequirement(devices[i]).empty() ? typeRank(p.deviceType) : -1;
-        if (rank > bestRank) {
-          bestRank = rank;
-          best = static_cast<int>(i);
-        }
-      }
+      std::vector<VulkanDeviceInfo> infos;
+      for (VkPhysicalDevice device : devices) infos.push_back(describe(device));
+      // None usable: the first, whose missing requirement the error below names.
+      best = std::max(0, mostCapableUsableDevice(infos));
     }
     physicalDevice = devices[best];
     vkGetPhysicalDeviceProperties(physicalDevice, &properties);

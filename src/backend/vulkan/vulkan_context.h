@@ -15,6 +15,7 @@ struct VulkanDeviceInfo {
   std::string name;
   std::string type;    // "discrete GPU", "integrated GPU", "CPU", ...
   bool gpu = false;    // a discrete, integrated or virtual GPU (not a CPU implementation such as lavapipe)
+  int rank = 0;        // preference when no --device is given: discrete, integrated, virtual GPU, CPU, other
   std::string missing;  // what it lacks to run the stages (Vulkan 1.1, subgroup operations...); empty: nothing
   std::string driver;  // driver name and version text
   uint32_t apiVersion = 0;
@@ -33,6 +34,10 @@ VkDebugUtilsMessengerEXT createValidationMessenger(VkInstance instance);
 
 // Lists every Vulkan device; throws wp::Error when there is no loader or no device.
 std::vector<VulkanDeviceInfo> listVulkanDevices();
+
+// The index of the best-ranked device of `devices` that lacks nothing, or -1: the device a
+// render takes without --device (VulkanContext), and the one `--backend auto` weighs.
+int mostCapableUsableDevice(const std::vector<VulkanDeviceInfo>& devices);
 
 class VulkanContext {
 public:
