@@ -47,6 +47,9 @@ struct RenderOptions {
   std::string samples;  // --samples A..B: render only these samples of --spp (a batch of a split frame)
   std::string region;   // --region X0,Y0,X1,Y1: render only this crop
   CheckpointOptions checkpoint;
+  // --time-limit: seconds of rendering after which each frame ends with the sample in
+  // progress; 0: none.
+  double timeLimitSeconds = 0.0;
   PassSelection passes;  // --passes: the feature passes an EXR holds
 };
 

@@ -146,6 +146,12 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
   outside.upload = secondsSince(uploadStart);
   if (renderer.tileCount() > 1) {
+    if (o.timeLimitSeconds > 0.0) {
+      throw Error("the image does not fit " + backend.deviceName() + " at once and is rendered in " +
+                  std::to_string(renderer.tileCount()) +
+                  " tiles, one after another, which a time limit would leave unfinished; leave out --time-limit, or "
+                  "render it in parts with --region and combine them with 'wavepath merge'");
+    }
     if (!o.checkpoint.path.empty()) {
       throw Error("the image does not fit " + backend.deviceName() + " at once and is rendered in " +
                   std::to_string(renderer.tileCount()) +
@@ -163,7 +169,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   here.endSample = o.settings.sampleEnd();
   here.region = o.settings.pixelRegion();
   here.device = o.backend + ": " + backend.deviceName();
-  RenderOutcome outcome = renderResumably(renderer, here, o.checkpoint);
+  RenderOutcome outcome = renderResumably(renderer, here, o.checkpoint, o.timeLimitSeconds);
   const RenderStats& stats = outcome.stats;
   if (outcome.interruptedBy != 0) {
     checkValidation(choice);
@@ -171,6 +177,15 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
       std::fprintf(stderr, "wavepath: %s: render stopped, nothing written (render with --checkpoint FILE to be able "
                            "to stop and resume)\n", signalName(outcome.interruptedBy));
     return o.checkpoint.path.empty() ? exitCodeInterrupted(outcome.interruptedBy) : kExitInterruptedResumable;
+  }
+  // What the image holds: a time limit may have ended it before --spp.
+  RenderSettings rendered = o.settings;
+  if (renderer.pathsEnd() < uint64_t(o.settings.pixelRegion().pixels()) * o.settings.sampleEnd()) {
+    rendered.samplesPerPixel = renderer.samplesPerPixelDone();
+    char text[96];
+    std::snprintf(text, sizeof(text), "the time limit (%g s) ended the render at %u spp", o.timeLimitSeconds,
+                  rendered.samplesPerPixel);
+    note(text);
   }
   auto writeStart = std::chrono::steady_clock::now();
   RadianceImage image = renderer.image();
@@ -180,12 +195,12 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
     for (float n : image.sampleCount) samples += n;
     char text[160];
     std::snprintf(text, sizeof(text), "adaptive sampling: %.1f samples per pixel on average, of at most %u (%.0f%%)",
-                  samples / double(image.sampleCount.size()), o.settings.samplesInRange(),
-                  100.0 * samples / double(image.sampleCount.size()) / o.settings.samplesInRange());
+                  samples / double(image.sampleCount.size()), rendered.samplesInRange(),
+                  100.0 * samples / double(image.sampleCount.size()) / rendered.samplesInRange());
     note(text);
   }
   const DisplaySettings display = displaySettings(o.camera, scene.camera.optics, image);
-  image.record = renderRecord(o.settings, here.identity, display, o.camera.autoExposure);
+  image.record = renderRecord(rendered, here.identity, display, o.camera.autoExposure);
   keepSelectedPasses(image, o.passes);
   writeImage(output, image, display);
   outside.write = secondsSince(writeStart);
@@ -197,7 +212,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   std::printf("%s: %s%ux%u, %u spp in %.2f s (%.2f s wall): %.3f M samples/s, %.2f Mrays/s "
               "(%.3f M extension + %.3f M shadow rays) on %s\n",
               output.c_str(), partText(o.settings).c_str(), o.settings.width, o.settings.height,
-              o.settings.samplesPerPixel, stats.seconds, wall, double(stats.samples) / stats.seconds * 1e-6,
+              rendered.samplesPerPixel, stats.seconds, wall, double(stats.samples) / stats.seconds * 1e-6,
               rays / stats.seconds * 1e-6, double(stats.extensionRays) * 1e-6, double(stats.shadowRays) * 1e-6,
               backend.deviceName().c_str());
   if (o.timings) {
@@ -266,7 +281,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
           ->check(CLI::Range(1e-6f, 1.0f));
   cmd->add_option("--adaptive-min-samples", o.settings.adaptiveMinSamples,
                   "Samples every pixel gets before adaptive sampling may stop it (default 16)")
-      ->check(CLI::Range(2u, 1u << 20))
+      ->check(CLI::Range(2u, kMaxSamplesPerPixel))
       ->needs(adaptive);
   cmd->add_option_function<std::string>(
          "--passes",
@@ -283,6 +298,18 @@ CLI::App* addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_flag("--resume", o.checkpoint.resume,
                 "Go on from the --checkpoint FILE of an interrupted render (same scene and flags)")
       ->needs(checkpoint);
+  // A part of a split frame must hold the samples it was given, and a resumed render's time
+  // before its checkpoint is not known: no time limit for either.
+  cmd->add_option("--time-limit", o.timeLimitSeconds,
+                  "Stop rendering (each frame) after SECONDS, once every pixel has finished the sample it is in, so "
+                  "all have as many; --spp is then the most a pixel gets (without --spp: no limit but the time)")
+      ->check(moreThanZero())
+      ->excludes(cmd->get_option("--samples"))
+      ->excludes(checkpoint);
+  cmd->final_callback([&o, cmd] {
+    if (o.timeLimitSeconds > 0.0 && cmd->get_option("--spp")->count() == 0)
+      o.settings.samplesPerPixel = kMaxSamplesPerPixel;
+  });
   return cmd;
 }
 
@@ -290,7 +317,7 @@ void addSceneFlags(CLI::App& command, RenderOptions& o) {
   CLI::App* cmd = &command;
   RenderSettings& s = o.settings;
   cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  cmd->add_option("--spp", s.samplesPerPixel, "Samples per pixel")->check(CLI::Range(1u, 1u << 20));
+  cmd->add_option("--spp", s.samplesPerPixel, "Samples per pixel")->check(CLI::Range(1u, kMaxSamplesPerPixel));
   cmd->add_option_function<uint32_t>("--width", [&](const uint32_t& w) { s.width = w; o.widthGiven = true; },
                                      "Image width in pixels (default 512)")
       ->check(CLI::Range(1u, 16384u));

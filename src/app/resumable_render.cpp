@@ -53,7 +53,8 @@ void checkCheckpointFlags(const CheckpointOptions& o, const std::string& output)
     throw FlagError("--checkpoint '" + o.path + "' exists; add --resume to go on from it, or remove it to start afresh");
 }
 
-RenderOutcome renderResumably(WavefrontRenderer& renderer, const Checkpoint& here, const CheckpointOptions& o) {
+RenderOutcome renderResumably(WavefrontRenderer& renderer, const Checkpoint& here, const CheckpointOptions& o,
+                              double timeLimitSeconds) {
   const uint64_t pixels = here.region.pixels();
   const uint64_t firstPath = pixels * here.firstSample;
   if (o.resume) {
@@ -85,7 +86,7 @@ RenderOutcome renderResumably(WavefrontRenderer& renderer, const Checkpoint& her
       lastSave = stats.seconds;
     }
     return true;
-  });
+  }, timeLimitSeconds);
   bar.finish();
   outcome.interruptedBy = renderer.pathsDone() < renderer.pathsEnd() ? interruptSignal() : 0;
   if (outcome.interruptedBy != 0 && !o.path.empty()) {

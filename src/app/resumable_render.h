@@ -29,7 +29,10 @@ struct RenderOutcome {
 // checkpoint path: first, with resume, restores the checkpoint (throws a one-line wp::Error,
 // touching nothing, when it is not of this render: `here` says what this render is), then
 // writes one every everySeconds and when a signal stops the render. Stops at the end of the
-// pass in flight when interruptSignal() says so.
-RenderOutcome renderResumably(WavefrontRenderer& renderer, const Checkpoint& here, const CheckpointOptions& options);
+// pass in flight when interruptSignal() says so. With a time limit (seconds above 0), the
+// render ends with the sample every pixel is in once that much time has passed
+// (WavefrontRenderer::render).
+RenderOutcome renderResumably(WavefrontRenderer& renderer, const Checkpoint& here, const CheckpointOptions& options,
+                              double timeLimitSeconds);
 
 }  // namespace wp

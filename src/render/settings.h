@@ -19,6 +19,10 @@ struct PixelRegion {
   bool operator==(const PixelRegion&) const = default;
 };
 
+// The most samples a pixel may get (--spp's limit): a pixel's sums count samples in floats,
+// exactly up to 2^24 (accumulation.h).
+constexpr uint32_t kMaxSamplesPerPixel = 1u << 20;
+
 struct RenderSettings {
   uint32_t width = 512;
   uint32_t height = 512;

@@ -87,6 +87,7 @@ void WavefrontRenderer::configure(const Scene& scene, const GpuScene& gpuScene, 
   const PixelRegion region = settings_.pixelRegion();
   firstPath_ = region.pixels() * settings_.firstSample;
   pathsDone_ = firstPath_;
+  earlyEnd_ = 0;
   tiles_ = splitIntoTiles(region, backend_.maxAccumulationPixels(settings_.maxPaths));
   tiledSums_ = {};
   if (tiles_.size() > 1) tiledSums_ = Accumulation::zeros(region.pixels());
@@ -172,6 +173,7 @@ void WavefrontRenderer::runPass(uint32_t firstPixel, uint32_t firstSample, uint3
 }
 
 void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats) {
+  const auto passStart = std::chrono::steady_clock::now();
   // The current tile's pixels, and where the next path lies in its own render order.
   const uint64_t pixels = params_.pixelCount;
   const uint64_t stop = tiles_.size() > 1 ? std::min(end, tileEnd(tile_)) : end;
@@ -180,6 +182,7 @@ void WavefrontRenderer::runNextPass(uint64_t end, uint64_t maxCount, RenderStats
   runPass(uint32_t(path % pixels), uint32_t(path / pixels), count, stats);
   pathsDone_ += count;
   stats.samples += count;
+  secondsPerPath_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count() / count;
 }
 
 uint64_t WavefrontRenderer::pathsPerPass() const {
@@ -193,23 +196,47 @@ uint64_t WavefrontRenderer::pathsPerPass() const {
   return std::min<uint64_t>(params_.maxPaths, std::max(betweenChecks, kSmallestAdaptivePass));
 }
 
-RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats&)>& afterPass) {
+RenderStats WavefrontRenderer::render(const std::function<bool(const RenderStats&)>& afterPass,
+                                      double timeLimitSeconds) {
+  const bool timed = timeLimitSeconds > 0.0;
+  if (timed && tiles_.size() > 1) throw std::logic_error("a render in tiles has no time limit");
+  // A timed render's passes: the first this many paths, to measure the time a path takes;
+  // then as many as fit the time left, but not fewer, so that no pass is mostly overhead.
+  constexpr uint64_t kSmallestTimedPass = 1u << 16;
   RenderStats stats;
   auto start = std::chrono::steady_clock::now();
   while (pathsDone_ < pathsEnd()) {
-    runNextPass(pathsEnd(), pathsPerPass(), stats);
+    uint64_t count = pathsPerPass();
+    if (timed && earlyEnd_ == 0) {
+      // The time is not up yet (it ends the render below), so `fit` is above 0; a double,
+      // since a limit of 1e300 seconds fits more paths than a uint64_t counts.
+      const double fit = secondsPerPath_ > 0.0 ? (timeLimitSeconds - stats.seconds) / secondsPerPath_ : 0.0;
+      if (fit < double(count)) count = std::clamp(uint64_t(fit), std::min(kSmallestTimedPass, count), count);
+    }
+    runNextPass(pathsEnd(), count, stats);
     if (tiles_.size() > 1 && pathsDone_ == tileEnd(tile_)) {
       storeTile();
       if (tile_ + 1 < tiles_.size()) configureTile(tile_ + 1);
     }
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (timed && stats.seconds >= timeLimitSeconds) endWithSampleInProgress();
     if (afterPass && !afterPass(stats)) break;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
 
-uint64_t WavefrontRenderer::pathsEnd() const { return settings_.pixelRegion().pixels() * settings_.sampleEnd(); }
+uint64_t WavefrontRenderer::pathsEnd() const {
+  const uint64_t end = settings_.pixelRegion().pixels() * settings_.sampleEnd();
+  return earlyEnd_ != 0 ? std::min(end, earlyEnd_) : end;
+}
+
+void WavefrontRenderer::endWithSampleInProgress() {
+  if (tiles_.size() > 1) throw std::logic_error("a render in tiles cannot end with the sample in progress");
+  const uint64_t pixels = settings_.pixelRegion().pixels();
+  const uint64_t samplesStarted = (pathsDone_ - firstPath_ + pixels - 1) / pixels;
+  earlyEnd_ = firstPath_ + std::max<uint64_t>(samplesStarted, 1) * pixels;
+}
 
 RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesPerPixel) {
   if (tiles_.size() > 1) {
@@ -236,11 +263,8 @@ RenderStats WavefrontRenderer::renderFor(double budgetSeconds, uint32_t samplesP
     } else if (stats.passes > 0 && left <= 0.0) {
       break;
     }
-    uint64_t before = pathsDone_;
-    double passStart = stats.seconds;
     runNextPass(end, count, stats);
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    secondsPerPath_ = (stats.seconds - passStart) / double(pathsDone_ - before);
   }
   return stats;
 }

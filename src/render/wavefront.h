@@ -52,7 +52,11 @@ public:
   // each pass; when it returns false the render stops there, to go on by a later call
   // (possibly after resume() in another process). With several tiles, tile after tile:
   // each pixel's paths are the same as without tiles, so the image is the same bit for bit.
-  RenderStats render(const std::function<bool(const RenderStats&)>& afterPass);
+  // With a time limit (seconds of this call above 0; a single tile), passes are sized from
+  // the time earlier ones took per path to end near it, and once it has passed the render
+  // ends with the sample every pixel is in: each pixel then has the same whole number of
+  // samples (at least one), and the image equals a render of that many bit for bit.
+  RenderStats render(const std::function<bool(const RenderStats&)>& afterPass, double timeLimitSeconds = 0.0);
   // How many tiles the region is rendered in (1 when it fits the device at once).
   size_t tileCount() const { return tiles_.size(); }
 
@@ -91,8 +95,12 @@ private:
   void runPass(uint32_t firstPixel, uint32_t firstSample, uint32_t pathCount, RenderStats& stats);
   // The paths of a pass of render(): the paths in flight, or fewer with adaptive sampling.
   uint64_t pathsPerPass() const;
-  // Runs the next pass of at most `maxCount` paths, stopping at path index `end`.
+  // Runs the next pass of at most `maxCount` paths, stopping at path index `end`, and
+  // measures its seconds per path.
   void runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats);
+  // Lowers pathsEnd() to the next whole number of samples per pixel (at least one): the
+  // end of the sample every pixel is in.
+  void endWithSampleInProgress();
   void configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
   // Points the backend at tile `index` with an empty accumulation.
   void configureTile(size_t index);
@@ -112,7 +120,9 @@ private:
   // A render starts at path firstPath_ (sample settings.firstSample).
   uint64_t firstPath_ = 0;
   uint64_t pathsDone_ = 0;
-  // Measured seconds per path of the last progressive pass; 0 before the first.
+  // The end endWithSampleInProgress set (a path index), or 0: the settings' end.
+  uint64_t earlyEnd_ = 0;
+  // Measured seconds per path of the last pass; 0 before the first.
   double secondsPerPath_ = 0.0;
 };
 
