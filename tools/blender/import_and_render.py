@@ -3,10 +3,12 @@ wavepath's render of the same file (docs/lights.md, "Against Blender").
 
 Measurement only (needs `apt-get install blender python3-numpy`; never used by the install step
 or the tests):
-    blender -b --factory-startup -noaudio -P tools/blender/import_and_render.py -- IN.gltf OUT.exr SPP WIDTH HEIGHT [unbiased]
+    blender -b --factory-startup -noaudio -P tools/blender/import_and_render.py -- IN.gltf OUT.exr SPP WIDTH HEIGHT [unbiased] [time=SECONDS]
 renders through the file's first camera with a box filter, 8 bounces, a black world and no
 adaptive sampling. Blender's other defaults stay, among them two biased ones: Filter Glossy 1
 (wavepath's --filter-glossy 1 is the same rule) and Clamp Indirect 10; "unbiased" turns both off.
+"time=SECONDS" sets Cycles' Time Limit (SPP is then the most it renders), as wavepath's
+--time-limit; Cycles prints the samples it reached ("Sample N/SPP").
 """
 import numpy; numpy.bool = bool  # Blender 3.4's importer expects an older numpy
 import bpy, sys
@@ -27,5 +29,8 @@ sc.cycles.pixel_filter_type = "BOX"; sc.cycles.filter_width = 1.0; sc.view_setti
 wd = bpy.data.worlds.new("black"); wd.use_nodes = True; wd.node_tree.nodes["Background"].inputs["Strength"].default_value = 0; sc.world = wd
 sc.render.image_settings.file_format = "OPEN_EXR"; sc.render.image_settings.color_depth = "32"
 sc.render.filepath = out; sc.render.use_file_extension = False
-if a[5:] == ["unbiased"]: sc.cycles.blur_glossy = 0.0; sc.cycles.sample_clamp_indirect = 0.0
+options = a[5:]
+if "unbiased" in options: sc.cycles.blur_glossy = 0.0; sc.cycles.sample_clamp_indirect = 0.0
+for o in options:
+    if o.startswith("time="): sc.cycles.time_limit = float(o[len("time="):])
 bpy.ops.render.render(write_still=True); print("import_and_render: wrote", out)
