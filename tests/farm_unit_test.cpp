@@ -26,6 +26,20 @@ TEST(ProgressLine, SaysSamplesDoneRateAndTimeLeft) {
   EXPECT_NE(progressLine({100, 0, 6400, 0, 0.0}).find("? left"), std::string::npos);
 }
 
+TEST(ProgressLine, WithATimeLimitThatComesFirstSaysTheTimeLeft) {
+  // At 160 samples/s the 5760 samples left take 36 s, past a limit of 10 s: 8 s are left.
+  RenderProgress p{100, 640, 6400, 320, 2.0, 10.0};
+  EXPECT_EQ(progressLine(p), "6.4 spp (20.0% of the time limit), 0.00 M samples/s, 0:02 spent, 0:08 left");
+  EXPECT_DOUBLE_EQ(progressFraction(p), 0.2) << "the bar follows the time";
+  // Before anything was measured the limit is all that is known.
+  EXPECT_EQ(progressLine({100, 0, 6400, 0, 0.0, 10.0}),
+            "0.0 spp (0.0% of the time limit), 0.00 M samples/s, 0:00 spent, 0:10 left");
+  // Samples that end the render first keep the samples' line.
+  p.timeLimitSeconds = 60.0;
+  EXPECT_EQ(progressLine(p), "6.4 of 64 spp (10.0%), 0.00 M samples/s, 0:02 spent, 0:36 left");
+  EXPECT_DOUBLE_EQ(progressFraction(p), 0.1);
+}
+
 Checkpoint smallCheckpoint() {
   Checkpoint c;
   c.identity = {"0123456789abcdef", "--width 3 --height 2 --seed 1"};

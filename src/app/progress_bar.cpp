@@ -22,7 +22,7 @@ void ProgressBar::update(const RenderProgress& progress) {
     return;
   }
   constexpr int kWidth = 30;
-  const double fraction = progress.pathsTotal ? double(progress.pathsDone) / double(progress.pathsTotal) : 1.0;
+  const double fraction = progressFraction(progress);
   char bar[kWidth + 1];
   for (int i = 0; i < kWidth; ++i) bar[i] = i < int(fraction * kWidth) ? '#' : '.';
   bar[kWidth] = '\0';

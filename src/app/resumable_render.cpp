@@ -79,7 +79,7 @@ RenderOutcome renderResumably(WavefrontRenderer& renderer, const Checkpoint& her
   double lastSave = 0.0;
   outcome.stats = renderer.render([&](const RenderStats& stats) {
     bar.update({pixels, renderer.pathsDone() - firstPath, renderer.pathsEnd() - firstPath,
-                renderer.pathsDone() - startPaths, stats.seconds});
+                renderer.pathsDone() - startPaths, stats.seconds, timeLimitSeconds});
     if (interruptSignal() != 0) return false;
     if (!o.path.empty() && stats.seconds - lastSave >= o.everySeconds && renderer.pathsDone() < renderer.pathsEnd()) {
       save();
