@@ -180,7 +180,7 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   }
   // What the image holds: a time limit may have ended it before --spp.
   RenderSettings rendered = o.settings;
-  if (renderer.pathsEnd() < uint64_t(o.settings.pixelRegion().pixels()) * o.settings.sampleEnd()) {
+  if (renderer.samplesPerPixelDone() < o.settings.samplesInRange()) {
     rendered.samplesPerPixel = renderer.samplesPerPixelDone();
     char text[96];
     std::snprintf(text, sizeof(text), "the time limit (%g s) ended the render at %u spp", o.timeLimitSeconds,
