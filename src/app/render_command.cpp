@@ -146,18 +146,14 @@ int renderFrame(const RenderOptions& o, const BackendChoice& choice, Backend& ba
   WavefrontRenderer renderer(backend, scene, gpuScene, o.settings);
   outside.upload = secondsSince(uploadStart);
   if (renderer.tileCount() > 1) {
-    if (o.timeLimitSeconds > 0.0) {
+    // What a tiled render cannot do, and what to do instead.
+    auto refuse = [&](const std::string& why, const std::string& flag) {
       throw Error("the image does not fit " + backend.deviceName() + " at once and is rendered in " +
-                  std::to_string(renderer.tileCount()) +
-                  " tiles, one after another, which a time limit would leave unfinished; leave out --time-limit, or "
-                  "render it in parts with --region and combine them with 'wavepath merge'");
-    }
-    if (!o.checkpoint.path.empty()) {
-      throw Error("the image does not fit " + backend.deviceName() + " at once and is rendered in " +
-                  std::to_string(renderer.tileCount()) +
-                  " tiles, which cannot be checkpointed; leave out --checkpoint, or render it in parts with "
-                  "--region and combine them with 'wavepath merge'");
-    }
+                  std::to_string(renderer.tileCount()) + " tiles, " + why + "; leave out " + flag +
+                  ", or render it in parts with --region and combine them with 'wavepath merge'");
+    };
+    if (o.timeLimitSeconds > 0.0) refuse("one after another, which a time limit would leave unfinished", "--time-limit");
+    if (!o.checkpoint.path.empty()) refuse("which cannot be checkpointed", "--checkpoint");
     note("the " + std::to_string(o.settings.width) + "x" + std::to_string(o.settings.height) + " image is rendered in " +
          std::to_string(renderer.tileCount()) + " tiles, one after another: its accumulation does not fit " +
          backend.deviceName() + " at once");

@@ -232,7 +232,6 @@ uint64_t WavefrontRenderer::pathsEnd() const {
 }
 
 void WavefrontRenderer::endWithSampleInProgress() {
-  if (tiles_.size() > 1) throw std::logic_error("a render in tiles cannot end with the sample in progress");
   const uint64_t pixels = settings_.pixelRegion().pixels();
   const uint64_t samplesStarted = (pathsDone_ - firstPath_ + pixels - 1) / pixels;
   earlyEnd_ = firstPath_ + std::max<uint64_t>(samplesStarted, 1) * pixels;

@@ -99,7 +99,7 @@ private:
   // measures its seconds per path.
   void runNextPass(uint64_t end, uint64_t maxCount, RenderStats& stats);
   // Lowers pathsEnd() to the next whole number of samples per pixel (at least one): the
-  // end of the sample every pixel is in.
+  // end of the sample every pixel is in. A single tile only (render() checks).
   void endWithSampleInProgress();
   void configure(const Scene& scene, const GpuScene& gpuScene, const RenderSettings& settings);
   // Points the backend at tile `index` with an empty accumulation.

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "backend/opencl/cl_check.h"
+#include "core/device_rank.h"
 #include "core/error.h"
 #include "shaders/common/layout.h"
 
@@ -138,11 +139,7 @@ std::string missingRequirement(const OpenClDeviceInfo& device) {
 }
 
 int mostCapableUsableDevice(const std::vector<OpenClDeviceInfo>& devices) {
-  int best = -1;
-  for (size_t i = 0; i < devices.size(); ++i) {
-    if (missingRequirement(devices[i]).empty() && (best < 0 || devices[i].rank > devices[best].rank)) best = int(i);
-  }
-  return best;
+  return mostCapableUsable(devices, [](const OpenClDeviceInfo& d) { return missingRequirement(d).empty(); });
 }
 
 OpenClDeviceInfo chooseOpenClDevice(int index) {

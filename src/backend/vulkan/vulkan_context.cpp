@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "backend/vulkan/vk_check.h"
+#include "core/device_rank.h"
 #include "core/error.h"
 
 namespace wp {
@@ -229,11 +230,7 @@ std::vector<VulkanDeviceInfo> listVulkanDevices() {
 }
 
 int mostCapableUsableDevice(const std::vector<VulkanDeviceInfo>& devices) {
-  int best = -1;
-  for (size_t i = 0; i < devices.size(); ++i) {
-    if (devices[i].missing.empty() && (best < 0 || devices[i].rank > devices[best].rank)) best = int(i);
-  }
-  return best;
+  return mostCapableUsable(devices, [](const VulkanDeviceInfo& d) { return d.missing.empty(); });
 }
 
 VulkanContext::VulkanContext(int deviceIndex, bool validation) {
