@@ -183,6 +183,7 @@ struct StageBuild {
   bool withoutMetal = false;    // every material's metalness 0 (removeMetalness)
   bool solidAngle = false;      // lights selected by solid angle, not by power
   bool featurePasses = true;    // the render records the feature passes
+  SamplerKind sampler = SamplerKind::Sobol;
   uint32_t maxBounces = 8;
   StackPlacement* placedStacks = nullptr;  // where Vulkan's stages kept their stacks, if given
 };
@@ -200,6 +201,7 @@ Accumulation renderOn(Backend& backend, const Scene& scene, const StageBuild& bu
   settings.maxPaths = 64 * 48 * 2;  // two passes
   settings.lightSelection = build.solidAngle ? LightSelection::SolidAngle : LightSelection::Power;
   settings.featurePasses = build.featurePasses;
+  settings.sampler = build.sampler;
   WavefrontRenderer renderer(backend, scene, gpuScene, settings);
   renderer.render(nullptr);
   return backend.readAccumulation();
@@ -302,6 +304,22 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   EXPECT_TRUE(both(&SceneFeatures::spheres));
   EXPECT_TRUE(both(&SceneFeatures::skyMap));
   EXPECT_TRUE(both(&SceneFeatures::punctual));
+}
+
+TEST(Samplers, StagesSpecializedToTheRendersSamplerMakeTheSameImageBitForBit) {
+  // Vulkan compiles the independent sampler only into the stages of a render that draws from
+  // it (WP_RENDER_INDEPENDENT_SAMPLER): bit for bit, since the draws are the same code either
+  // way. A Sobol render's stages that kept only the independent sampler, or the reverse, would
+  // draw other numbers and differ from the stages built with both.
+  Scene box = bakeSingleUseMeshes(assetScene("cornell-box.gltf"));
+  for (const SamplerKind sampler : {SamplerKind::Sobol, SamplerKind::Independent}) {
+    SCOPED_TRACE(sampler == SamplerKind::Sobol ? "sobol" : "independent");
+    expectSameBitForBit(renderVulkan(box, {.specialize = true, .sampler = sampler}),
+                        renderVulkan(box, {.specialize = false, .sampler = sampler}));
+  }
+  EXPECT_FALSE(renderVulkan(box, {.sampler = SamplerKind::Sobol}).sum ==
+               renderVulkan(box, {.sampler = SamplerKind::Independent}).sum)
+      << "the two samplers drew the same numbers";
 }
 
 // Whether any entry of `layer` is not zero.

@@ -86,8 +86,9 @@ typedef uint4 uvec4;
 #ifndef WP_RENDER_SOLID_ANGLE_SELECTION
 #define WP_RENDER_SOLID_ANGLE_SELECTION true
 #endif
-// OpenCL tests RenderParams.featurePasses as it runs: PoCL's branches are real.
+// OpenCL tests RenderParams.featurePasses and samplerKind as it runs: PoCL's branches are real.
 #define WP_RENDER_FEATURE_PASSES true
+#define WP_RENDER_INDEPENDENT_SAMPLER true
 #define WP_STRUCT(name) typedef struct name {
 #define WP_STRUCT_END(name) } name;
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

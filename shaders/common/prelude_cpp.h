@@ -57,6 +57,7 @@ inline thread_local DeepestStacks deepestStacks;
 #define WP_SCENE_PUNCTUAL true
 #define WP_RENDER_SOLID_ANGLE_SELECTION true
 #define WP_RENDER_FEATURE_PASSES true
+#define WP_RENDER_INDEPENDENT_SAMPLER true
 #define WP_STRUCT(name) struct name {
 #define WP_STRUCT_END(name) };
 // A file-scope table of float constants: WP_FLOAT_TABLE(name, size) v0, v1, ... WP_FLOAT_TABLE_END

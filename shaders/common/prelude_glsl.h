@@ -80,6 +80,9 @@ layout(constant_id = 18) const bool WP_SCENE_PUNCTUAL = true;
 // stages.h): their albedo, normal and depth were written for every hit and summed for every
 // pixel of a PNG too.
 layout(constant_id = 19) const bool WP_RENDER_FEATURE_PASSES = true;
+// Whether the render draws from the independent sampler (RenderParams.samplerKind, sampler.h):
+// false compiles it out of a Sobol render's stages.
+layout(constant_id = 20) const bool WP_RENDER_INDEPENDENT_SAMPLER = true;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

@@ -37,6 +37,12 @@ WP_DEFINE_SOBOL_DIMENSION_SEED(sobolDimensionSeed4, uvec4, pcgHash4)
 // The first dimension of the vertex the ray of `bounce` reaches.
 WP_FN uint vertexDimension(uint bounce) { return WP_DIMS_CAMERA + bounce * WP_DIMS_PER_BOUNCE; }
 
+// Whether the draws are the Sobol sampler's. Vulkan compiles the independent sampler only
+// into the stages of a render that uses it (WP_RENDER_INDEPENDENT_SAMPLER, prelude_glsl.h):
+// lavapipe runs both sides of every branch, so each draw of a Sobol render also ran the PCG
+// stream's, and the camera's draws the independent sampler's Sobol calls too.
+WP_FN bool drawsSobol(uint samplerKind) { return !WP_RENDER_INDEPENDENT_SAMPLER || samplerKind == WP_SAMPLER_SOBOL; }
+
 // What a path carries between draws: the PCG stream (independent) or the pixel's seed
 // (Sobol), and its sample index in the pixel.
 WP_STRUCT(PathSamples)
@@ -48,7 +54,7 @@ WP_STRUCT_END(PathSamples)
 WP_FN PathSamples startPathSamples(uint samplerKind, uint pixel, uint sampleIndex, uint seed) {
   PathSamples p;
   p.sampleIndex = sampleIndex;
-  p.state = samplerKind == WP_SAMPLER_SOBOL ? pcgHash(pixel ^ pcgHash(seed ^ 0x5851f42du)) : rngSeed(pixel, sampleIndex, seed);
+  p.state = drawsSobol(samplerKind) ? pcgHash(pixel ^ pcgHash(seed ^ 0x5851f42du)) : rngSeed(pixel, sampleIndex, seed);
   return p;
 }
 
@@ -61,7 +67,7 @@ WP_STRUCT_END(PathDraw1)
 WP_FN_INLINED PathDraw1 drawPath1(uint samplerKind, PathSamples p, uint dimension) {
   PathDraw1 d;
   d.samples = p;
-  if (samplerKind == WP_SAMPLER_SOBOL) {
+  if (drawsSobol(samplerKind)) {
     d.u = sobolScrambled1(p.sampleIndex, sobolDimensionSeed(p.state, dimension));
   } else {
     d.samples.state = rngNext(p.state);
@@ -79,7 +85,7 @@ WP_STRUCT_END(PathDraw2)
 WP_FN_INLINED PathDraw2 drawPath2(uint samplerKind, PathSamples p, uint dimension) {
   PathDraw2 d;
   d.samples = p;
-  if (samplerKind == WP_SAMPLER_SOBOL) {
+  if (drawsSobol(samplerKind)) {
     d.u = sobolScrambled2(p.sampleIndex, sobolDimensionSeed(p.state, dimension));
   } else {
     d.samples.state = rngNext(p.state);
@@ -110,7 +116,7 @@ WP_FN_INLINED PathDraw3 drawPath3(uint samplerKind, PathSamples p, uint dimensio
 // from the stream rather than drawing it, so that no other draw shifts and scenes without
 // motion render bit for bit as they did before time existed.
 WP_FN_INLINED float pathTime(uint samplerKind, PathSamples p) {
-  if (samplerKind == WP_SAMPLER_SOBOL) {
+  if (drawsSobol(samplerKind)) {
     return sobolScrambled1(p.sampleIndex, sobolDimensionSeed(p.state, WP_DIM_TIME));
   }
   return rngTime(p.state);
@@ -129,7 +135,7 @@ WP_STRUCT_END(CameraDraws)
 WP_FN_INLINED CameraDraws drawCamera(uint samplerKind, PathSamples p) {
   CameraDraws d;
   d.time = pathTime(samplerKind, p);
-  if (samplerKind == WP_SAMPLER_SOBOL) {
+  if (drawsSobol(samplerKind)) {
     vec4 u = sobolScrambled4(p.sampleIndex,
                              sobolDimensionSeed4(p.state, make_uvec4(WP_DIM_FILM, WP_DIM_FILM, WP_DIM_LENS, WP_DIM_LENS)),
                              make_uvec4(WP_SOBOL_FIRST, WP_SOBOL_SECOND, WP_SOBOL_FIRST, WP_SOBOL_SECOND));
@@ -162,7 +168,7 @@ WP_STRUCT_END(VertexDraws)
 WP_FN_INLINED VertexDraws drawVertex(uint samplerKind, PathSamples p, uint bounce, bool light, bool roulette) {
   VertexDraws d;
   uint first = vertexDimension(bounce);
-  if (samplerKind == WP_SAMPLER_SOBOL) {
+  if (drawsSobol(samplerKind)) {
     // The first coordinates of the four dimensions, then the second ones of the two 2D
     // dimensions and the roulette number (twice, filling the lanes).
     vec4 firsts = sobolScrambled4(

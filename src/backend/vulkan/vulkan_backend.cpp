@@ -220,14 +220,15 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   info.stage.pName = "main";
   // The constants in constant_id order, each 32 bits (VkBool32 or uint): the features of
   // prelude_glsl.h and the render's light selection, shade.comp's class and split, then the
-  // traversal's stacks, top level, planes, spheres, the sky's map, punctual lights and the
-  // render's feature passes (a stage without some of them ignores them, which Vulkan allows).
-  const std::array<uint32_t, 20> constants = {
+  // traversal's stacks, top level, planes, spheres, the sky's map, punctual lights, the
+  // render's feature passes and its sampler (a stage without some of them ignores them,
+  // which Vulkan allows).
+  const std::array<uint32_t, 21> constants = {
       features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
       features.metallic,    features.emissive, features.skySampled, solidAngleSelection_,  shadeClass,
       splitShade_,          stacks_.inWorkgroupMemory, stacks_.topLevelEntries, stacks_.bottomLevelEntries,
       features.instanced,   features.planes,           features.spheres,        features.skyMap,
-      features.punctual,    featurePasses_};
+      features.punctual,    featurePasses_,            independentSampler_};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)};
@@ -344,10 +345,14 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   // And the feature passes only for a render that keeps them: a few percent of shade's time
   // and half of accumulate's on lavapipe (docs/performance.md).
   const bool featurePasses = params.featurePasses != 0u || !specializeToScene_;
-  const bool respecialize =
-      pendingRespecialize_ || solidAngle != solidAngleSelection_ || featurePasses != featurePasses_;
+  // And the independent sampler only for a render that draws from it: each draw of a Sobol
+  // render ran the PCG stream's code too (docs/performance.md).
+  const bool independentSampler = params.samplerKind == WP_SAMPLER_INDEPENDENT || !specializeToScene_;
+  const bool respecialize = pendingRespecialize_ || solidAngle != solidAngleSelection_ ||
+                            featurePasses != featurePasses_ || independentSampler != independentSampler_;
   solidAngleSelection_ = solidAngle;
   featurePasses_ = featurePasses;
+  independentSampler_ = independentSampler;
   buildPipelines(pendingMotion_, respecialize);
   pendingRespecialize_ = false;
   params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
