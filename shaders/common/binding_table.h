@@ -22,7 +22,8 @@
 //             constant, bindings.glsl says why), TEXELS (read-only; a scene array), STORAGE
 //             (read and written), WRITE (a queue the stage appends to), TEXEL_VIEW (Vulkan:
 //             the buffer of the same name again, read as texels: a queue by the next stage,
-//             the paths' radiance and features by the stages that add to them), CONSTANT
+//             the paths' radiance and features and the pixels' sums by the stages that add
+//             to them), CONSTANT
 //             (read-only texels the backend uploads once from a header's table);
 //   backends  ALL, or VULKAN for what OpenCL and C++ do without (their kernels read a buffer
 //             through the buffer's own pointer, and shade every material class in one go): no
@@ -44,7 +45,7 @@
   X(shadowRays, 9, ShadowRay, 3, NONE, WRITE, ALL)                                \
   X(pathRadiance, 10, vec4, 1, VIEWED, STORAGE, ALL)                              \
   X(counters, 11, uint, 0, NONE, STORAGE, ALL)                                    \
-  X(accumulation, 12, vec4, 1, NONE, STORAGE, ALL)                                \
+  X(accumulation, 12, vec4, 1, VIEWED, STORAGE, ALL)                              \
   X(skyRadiance, 13, vec4, 1, VEC4, TEXELS, ALL)                                  \
   X(skyMarginal, 14, float, 0, R32, TEXELS, ALL)                                  \
   X(skyConditional, 15, float, 0, R32, TEXELS, ALL)                               \
@@ -58,7 +59,8 @@
   X(bsdfTables, 23, float, 0, R32, CONSTANT, VULKAN)                             \
   X(deferredHits, 24, uint, 0, NONE, STORAGE, VULKAN)                            \
   X(pathRadiance, 25, vec4, 1, VEC4, TEXEL_VIEW, VULKAN)                          \
-  X(pathFeatures, 26, PathFeatures, 2, RECORD, TEXEL_VIEW, VULKAN)
+  X(pathFeatures, 26, PathFeatures, 2, RECORD, TEXEL_VIEW, VULKAN)                \
+  X(accumulation, 27, vec4, 1, VEC4, TEXEL_VIEW, VULKAN)
 
 // What the rows mean:
 //   params          RenderParams, the render's settings

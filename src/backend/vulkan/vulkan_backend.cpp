@@ -180,7 +180,9 @@ uint64_t VulkanBackend::maxAccumulationPixels(uint32_t maxPaths) const {
   const DeviceLimits& limits = context_->limits;
   const uint64_t used = pathStateBytes(maxPaths);
   const uint64_t byMemory = limits.memory.bytes > used ? (limits.memory.bytes - used) / kAccumulationBytesPerPixel : 0;
-  return std::min(limits.writable.bytes / kAccumulationBytesPerPixel, byMemory);
+  // Also read as RGBA32 texels (its TEXEL_VIEW row), a texel of each layer per pixel.
+  const uint64_t byTexels = uint64_t(context_->properties.limits.maxTexelBufferElements) / WP_ACCUMULATION_LAYERS;
+  return std::min({limits.writable.bytes / kAccumulationBytesPerPixel, byMemory, byTexels});
 }
 
 void VulkanBackend::createLayouts() {
@@ -371,7 +373,7 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
                              storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, false);
   }
   pixelCount_ = params.pixelCount;
-  accumulation_ = VulkanBuffer(*context_, accumulationBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  accumulation_ = VulkanBuffer(*context_, accumulationBytes, kViewedStorageUsage, false);
   context_->runOnce([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, accumulation_.handle(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);  // empty queues (queues.h)
@@ -389,7 +391,7 @@ void VulkanBackend::writeDescriptors() {
   buffers[gpu::Binding::pathFeatures] = buffers[gpu::Binding::pathFeaturesTexelView] = &pathFeatures_;
   buffers[gpu::Binding::counters] = &counters_;
   buffers[gpu::Binding::deferredHits] = &deferredHits_;
-  buffers[gpu::Binding::accumulation] = &accumulation_;
+  buffers[gpu::Binding::accumulation] = buffers[gpu::Binding::accumulationTexelView] = &accumulation_;
   buffers[gpu::Binding::bsdfTables] = &bsdfTables_;
   for (size_t i = 0; i < kSceneBindings.size(); ++i) {
     buffers[kSceneBindings[i]] = &sceneBuffers_[i];
@@ -420,7 +422,8 @@ void VulkanBackend::writeDescriptors() {
 }
 
 VkBufferView VulkanBackend::texelView(const VulkanBuffer& buffer, VkFormat format) {
-  // loadScene and maxPathsInFlight keep every buffer within maxTexelBufferElements.
+  // loadScene, maxPathsInFlight and maxAccumulationPixels keep every buffer within
+  // maxTexelBufferElements.
   uint64_t bytesPerTexel = format == VK_FORMAT_R32_UINT ? 4 : 16;
   VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
   info.buffer = buffer.handle();
