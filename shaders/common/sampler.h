@@ -40,7 +40,7 @@ WP_FN uint vertexDimension(uint bounce) { return WP_DIMS_CAMERA + bounce * WP_DI
 // Whether the draws are the Sobol sampler's. Vulkan compiles the independent sampler only
 // into the stages of a render that uses it (WP_RENDER_INDEPENDENT_SAMPLER, prelude_glsl.h):
 // lavapipe runs both sides of every branch, so each draw of a Sobol render also ran the PCG
-// stream's, and the camera's draws the independent sampler's Sobol calls too.
+// stream's.
 WP_FN bool drawsSobol(uint samplerKind) { return !WP_RENDER_INDEPENDENT_SAMPLER || samplerKind == WP_SAMPLER_SOBOL; }
 
 // What a path carries between draws: the PCG stream (independent) or the pixel's seed

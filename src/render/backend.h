@@ -144,8 +144,9 @@ public:
   // Whether the kernels of the loaded scene are the motion-blur ones.
   virtual bool motionKernels() const = 0;
   // The most pixels whose accumulation fits the device beside the loaded scene and
-  // `maxPaths` paths in flight, by the largest buffer and by its memory (an image with more
-  // is rendered in tiles). Call after loadScene.
+  // `maxPaths` paths in flight, by the largest buffer, by its memory and, where the backend
+  // reads it as texels, by the most texels a view may hold (an image with more is rendered in
+  // tiles). Call after loadScene.
   virtual uint64_t maxAccumulationPixels(uint32_t maxPaths) const = 0;
   // Sets the render parameters and sizes path state for params.maxPaths paths and the
   // accumulation for params.pixelCount pixels (the tile's); clears the accumulation. Throws

@@ -75,8 +75,8 @@ struct VulkanPushConstants {
 // queue (shade.comp).
 constexpr uint64_t kVulkanBytesPerPath = kBytesPerPath + sizeof(uint32_t);
 
-// Storage for the queues and the paths' radiance and features, also read as texels (the
-// TEXEL_VIEW rows of binding_table.h).
+// Storage for the queues, the paths' radiance and features and the pixels' sums, also read as
+// texels (the TEXEL_VIEW rows of binding_table.h).
 constexpr VkBufferUsageFlags kViewedStorageUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 
