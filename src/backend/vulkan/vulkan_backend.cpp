@@ -227,10 +227,10 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   // which Vulkan allows).
   const std::array<uint32_t, 21> constants = {
       features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
-      features.metallic,    features.emissive, features.skySampled, solidAngleSelection_,  shadeClass,
+      features.metallic,    features.emissive, features.skySampled, render_.solidAngleSelection, shadeClass,
       splitShade_,          stacks_.inWorkgroupMemory, stacks_.topLevelEntries, stacks_.bottomLevelEntries,
       features.instanced,   features.planes,           features.spheres,        features.skyMap,
-      features.punctual,    featurePasses_,            independentSampler_};
+      features.punctual,    render_.featurePasses,     render_.independentSampler};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)};
@@ -341,20 +341,20 @@ void VulkanBackend::configure(const gpu::RenderParams& params) {
   checkPathStateFits(context_->limits, 2ull * maxPaths * sizeof(gpu::PathRay), params.pixelCount,
                      pathStateBytes(maxPaths) + accumulationBytes);
   vkDeviceWaitIdle(context_->device);
-  // The stages compile the solid-angle light selection only for a render that uses it (or
-  // with every feature): lavapipe runs a loop's body once even where no lane enters it.
-  const bool solidAngle = params.lightSelection == WP_LIGHT_SELECTION_SOLID_ANGLE || !specializeToScene_;
-  // And the feature passes only for a render that keeps them: a few percent of shade's time
-  // and half of accumulate's on lavapipe (docs/performance.md).
-  const bool featurePasses = params.featurePasses != 0u || !specializeToScene_;
-  // And the independent sampler only for a render that draws from it: each draw of a Sobol
-  // render ran the PCG stream's code too (docs/performance.md).
-  const bool independentSampler = params.samplerKind == WP_SAMPLER_INDEPENDENT || !specializeToScene_;
-  const bool respecialize = pendingRespecialize_ || solidAngle != solidAngleSelection_ ||
-                            featurePasses != featurePasses_ || independentSampler != independentSampler_;
-  solidAngleSelection_ = solidAngle;
-  featurePasses_ = featurePasses;
-  independentSampler_ = independentSampler;
+  // With every feature (specializeToScene_ false) the stages keep all of the render's code.
+  const bool all = !specializeToScene_;
+  const RenderSpecialization render{
+      // The solid-angle light selection only for a render that uses it: lavapipe runs a
+      // loop's body once even where no lane enters it.
+      .solidAngleSelection = params.lightSelection == WP_LIGHT_SELECTION_SOLID_ANGLE || all,
+      // The feature passes only for a render that keeps them: a few percent of shade's time
+      // and half of accumulate's on lavapipe (docs/performance.md).
+      .featurePasses = params.featurePasses != 0u || all,
+      // The independent sampler only for a render that draws from it: each draw of a Sobol
+      // render ran the PCG stream's code too (docs/performance.md).
+      .independentSampler = params.samplerKind == WP_SAMPLER_INDEPENDENT || all};
+  const bool respecialize = pendingRespecialize_ || render != render_;
+  render_ = render;
   buildPipelines(pendingMotion_, respecialize);
   pendingRespecialize_ = false;
   params_ = VulkanBuffer(*context_, sizeof(params), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);

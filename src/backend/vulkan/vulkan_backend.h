@@ -62,8 +62,7 @@ private:
   // of a split shade or not (splitShade_).
   VkPipeline createPipeline(SpirvCode code, const SceneFeatures& features, uint32_t shadeClass);
   // (Re)builds the stages for `motion` (WP_MOTION_BLUR or not) specialized to sceneFeatures_,
-  // stacks_, splitShade_, solidAngleSelection_, featurePasses_ and independentSampler_: those
-  // whose build changed, or all with respecialize.
+  // stacks_, splitShade_ and render_: those whose build changed, or all with respecialize.
   void buildPipelines(bool motion, bool respecialize);
   // Records a dispatch of `pipeline`, after a barrier on what the dispatches before wrote.
   void record(VkPipeline pipeline, const gpu::PassConstants& constants, const DispatchSize& size);
@@ -80,9 +79,13 @@ private:
   bool motion_ = false;  // pipelines_ hold the stages built with WP_MOTION_BLUR
   SceneFeatures sceneFeatures_;  // and specialized to these
   StackPlacement stacks_;        // with the traversal's stacks here
-  bool solidAngleSelection_ = false;  // and to the render's light selection (configure)
-  bool featurePasses_ = true;         // and whether it records feature passes (configure)
-  bool independentSampler_ = true;    // and draws from the independent sampler (configure)
+  // and to what the render uses (configure; the WP_RENDER_* constants of prelude_glsl.h)
+  struct RenderSpecialization {
+    bool solidAngleSelection = false;  // lights selected by solid angle
+    bool featurePasses = true;         // feature passes recorded
+    bool independentSampler = true;    // draws from the independent sampler
+    bool operator==(const RenderSpecialization&) const = default;
+  } render_;
   // What loadScene asks of the stages, which configure builds: the motion build or not, and
   // whether the loaded scene needs them specialized anew.
   bool pendingMotion_ = false;
