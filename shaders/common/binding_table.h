@@ -56,7 +56,7 @@
   X(rays, 20, PathRay, 4, RECORD, TEXEL_VIEW, VULKAN)                             \
   X(hits, 21, HitRecord, 1, RECORD, TEXEL_VIEW, VULKAN)                           \
   X(shadowRays, 22, ShadowRay, 3, RECORD, TEXEL_VIEW, VULKAN)                      \
-  X(bsdfTables, 23, float, 0, R32, CONSTANT, VULKAN)                             \
+  X(bsdfTables, 23, vec4, 1, VEC4, CONSTANT, VULKAN)                              \
   X(deferredHits, 24, uint, 0, NONE, STORAGE, VULKAN)                            \
   X(pathRadiance, 25, vec4, 1, VEC4, TEXEL_VIEW, VULKAN)                          \
   X(pathFeatures, 26, PathFeatures, 2, RECORD, TEXEL_VIEW, VULKAN)                \
@@ -78,9 +78,10 @@
 //   triangleShading parallel to the triangles
 //   pathFeatures    PathFeatures[maxPaths]: the feature passes of each path of the pass
 //   texels          RGBA8 texels of every texture, r in the low byte
-//   bsdfTables      the BSDF's constant tables (bsdf_table_lookup.h), from the header's own
-//                   array. Vulkan only: OpenCL and C++ read that array as a constant, but
-//                   llvmpipe takes minutes to compile a shader that holds it.
+//   bsdfTables      the BSDF's constant tables (bsdf_table_lookup.h) as quads, one texel
+//                   each, packed from the header's own array. Vulkan only: OpenCL and C++
+//                   read that array as a constant, but llvmpipe takes minutes to compile a
+//                   shader that holds it.
 //   deferredHits    uint[maxPaths]: the deferred shade queue (queues.h), entries of the
 //                   ray queue. Vulkan only: OpenCL shades every material in one kernel.
 

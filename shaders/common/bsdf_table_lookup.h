@@ -6,11 +6,8 @@
 
 #include "portable.h"
 
-// Element i of the tables: C++ and OpenCL read the constant array of bsdf_tables.h;
-// GLSL (shaders/vulkan/bindings.glsl) fetches the copy the host uploads from that array.
 #ifdef WP_BUFFERS_AS_ARGUMENTS
 #include "bsdf_tables.h"
-#define WP_BSDF_TABLE(i) kBsdfTables[i]
 #endif
 
 WP_BEGIN
@@ -22,27 +19,92 @@ WP_BEGIN
 #define WP_TABLE_GGX_SCHLICK_MEAN 2080u  // the same with Schlick's weight
 #define WP_TABLE_SHEEN 2112u             // the sheen lobe's E(cos, r) with colour 1 (sheen.h)
 #define WP_TABLE_FLOATS 3136u
+#if defined(__cplusplus)
+static_assert(WP_TABLE_GGX_SCHLICK_MEAN == WP_TABLE_GGX_WHITE_MEAN + WP_TABLE_SIZE, "ggxMeanAlbedos reads both in one quad");
+#endif
+// The quads that lie wholly inside the tables (bsdfTableQuad): every i up to the last
+// entry's lower-left neighbour.
+#define WP_TABLE_QUADS (WP_TABLE_FLOATS - WP_TABLE_SIZE - 1u)
 
-// Bilinear interpolation of the N x N table at `table`.
-WP_FN float bsdfTableAt(uint table, float roughness, float cosTheta) {
+// The four entries a bilinear lookup at entry i reads: i and i + 1 (a row of a table, at two
+// neighbouring columns) and the same two N entries further (the next row). A lookup reads its
+// quad at once: on lavapipe each texel fetch is a call of its fetch function, and four R32
+// fetches per lookup, eight for the dielectric's two GGX tables, had been a fifth of the
+// instructions of a glTF scene's shade. The two GGX mean tables lie N apart, so the quad of a
+// white mean holds the Schlick mean at the same roughness as its next row.
+WP_STRUCT(BsdfTableQuad)
+  vec2 row;      // entries i, i + 1
+  vec2 nextRow;  // entries i + N, i + N + 1
+WP_STRUCT_END(BsdfTableQuad)
+
+#ifdef WP_BUFFERS_AS_ARGUMENTS
+// C++ and OpenCL read the header's constant array; the Vulkan backend packs what this returns
+// for each i below WP_TABLE_QUADS into the RGBA texels GLSL fetches.
+WP_FN BsdfTableQuad bsdfTableQuad(uint i) {
+  BsdfTableQuad quad;
+  quad.row = make_vec2(kBsdfTables[i], kBsdfTables[i + 1u]);
+  quad.nextRow = make_vec2(kBsdfTables[i + WP_TABLE_SIZE], kBsdfTables[i + WP_TABLE_SIZE + 1u]);
+  return quad;
+}
+#else
+WP_FN BsdfTableQuad bsdfTableQuad(uint i) {
+  vec4 texel = WP_LOAD(bsdfTables, i);  // shaders/vulkan/bindings.glsl
+  BsdfTableQuad quad;
+  quad.row = texel.xy;
+  quad.nextRow = texel.zw;
+  return quad;
+}
+#endif
+
+// Where a bilinear lookup at (roughness, cos(theta)) reads an N x N table: the entry of its
+// quad, counted from the table's start, and the weights of the next column and row.
+WP_STRUCT(BsdfTablePoint)
+  uint entry;
+  float columnWeight;
+  float rowWeight;
+WP_STRUCT_END(BsdfTablePoint)
+
+WP_FN BsdfTablePoint bsdfTablePoint(float roughness, float cosTheta) {
   float last = toFloat(WP_TABLE_SIZE - 1u);
   float x = clamp(cosTheta, 0.0f, 1.0f) * last;
   float y = clamp(roughness, 0.0f, 1.0f) * last;
   uint column = min(toUint(x), WP_TABLE_SIZE - 2u);
   uint row = min(toUint(y), WP_TABLE_SIZE - 2u);
-  float fx = x - toFloat(column);
-  float fy = y - toFloat(row);
-  uint i = table + row * WP_TABLE_SIZE + column;
-  float below = mix(WP_BSDF_TABLE(i), WP_BSDF_TABLE(i + 1u), fx);
-  float above = mix(WP_BSDF_TABLE(i + WP_TABLE_SIZE), WP_BSDF_TABLE(i + WP_TABLE_SIZE + 1u), fx);
-  return mix(below, above, fy);
+  BsdfTablePoint point;
+  point.entry = row * WP_TABLE_SIZE + column;
+  point.columnWeight = x - toFloat(column);
+  point.rowWeight = y - toFloat(row);
+  return point;
 }
 
-// Linear interpolation of the per-roughness table at `table`.
-WP_FN float bsdfTableMeanAt(uint table, float roughness) {
+// Bilinear interpolation of the N x N table at `table`, at `point`.
+WP_FN float bsdfTableAtPoint(uint table, BsdfTablePoint point) {
+  BsdfTableQuad quad = bsdfTableQuad(table + point.entry);
+  float below = mix(quad.row.x, quad.row.y, point.columnWeight);
+  float above = mix(quad.nextRow.x, quad.nextRow.y, point.columnWeight);
+  return mix(below, above, point.rowWeight);
+}
+
+WP_FN float bsdfTableAt(uint table, float roughness, float cosTheta) {
+  return bsdfTableAtPoint(table, bsdfTablePoint(roughness, cosTheta));
+}
+
+// GGX's hemispherical mean albedos at a roughness, with F = 1 and with Schlick's weight.
+WP_STRUCT(GgxMeanAlbedos)
+  float white;
+  float schlick;
+WP_STRUCT_END(GgxMeanAlbedos)
+
+// Linear interpolation of both per-roughness tables, from one quad.
+WP_FN GgxMeanAlbedos ggxMeanAlbedos(float roughness) {
   float y = clamp(roughness, 0.0f, 1.0f) * toFloat(WP_TABLE_SIZE - 1u);
   uint row = min(toUint(y), WP_TABLE_SIZE - 2u);
-  return mix(WP_BSDF_TABLE(table + row), WP_BSDF_TABLE(table + row + 1u), y - toFloat(row));
+  float weight = y - toFloat(row);
+  BsdfTableQuad quad = bsdfTableQuad(WP_TABLE_GGX_WHITE_MEAN + row);
+  GgxMeanAlbedos means;
+  means.white = mix(quad.row.x, quad.row.y, weight);
+  means.schlick = mix(quad.nextRow.x, quad.nextRow.y, weight);
+  return means;
 }
 
 WP_END

@@ -23,14 +23,14 @@ WP_BEGIN
 // coloured F0 the largest channel has the largest albedo at every angle (E >= E_schlick), so
 // passing the largest F0 gives the largest channel's albedo.
 WP_FN float ggxSpecularAlbedo(float f0, float f90, float roughness, float cosTheta) {
-  return f0 * bsdfTableAt(WP_TABLE_GGX_WHITE, roughness, cosTheta) +
-         (f90 - f0) * bsdfTableAt(WP_TABLE_GGX_SCHLICK, roughness, cosTheta);
+  BsdfTablePoint point = bsdfTablePoint(roughness, cosTheta);
+  return f0 * bsdfTableAtPoint(WP_TABLE_GGX_WHITE, point) + (f90 - f0) * bsdfTableAtPoint(WP_TABLE_GGX_SCHLICK, point);
 }
 
 // Its hemispherical mean.
 WP_FN float ggxSpecularMeanAlbedo(float f0, float f90, float roughness) {
-  return f0 * bsdfTableMeanAt(WP_TABLE_GGX_WHITE_MEAN, roughness) +
-         (f90 - f0) * bsdfTableMeanAt(WP_TABLE_GGX_SCHLICK_MEAN, roughness);
+  GgxMeanAlbedos means = ggxMeanAlbedos(roughness);
+  return f0 * means.white + (f90 - f0) * means.schlick;
 }
 
 // ---- Metal: the multiple-scattering lobe -------------------------------------------------
@@ -48,7 +48,7 @@ WP_FN vec3 multipleScatteringFresnel(vec3 f0, float meanAlbedo) {
 // angles and with roughness), and is reciprocal; a white metal then reflects exactly
 // everything. Returns f (without the cosine).
 WP_FN vec3 ggxMultipleScattering(vec3 f0, float roughness, float cosO, float cosI) {
-  float meanAlbedo = bsdfTableMeanAt(WP_TABLE_GGX_WHITE_MEAN, roughness);
+  float meanAlbedo = ggxMeanAlbedos(roughness).white;
   float lost = 1.0f - meanAlbedo;
   if (lost < 1e-4f) {
     return make_vec3(0.0f, 0.0f, 0.0f);  // smooth: nothing to give back, and 0 / 0 below
@@ -62,7 +62,7 @@ WP_FN vec3 ggxMultipleScattering(vec3 f0, float roughness, float cosO, float cos
 // scattering lobe holds: (1 - E(o)) F_ms against E(o) F_avg, by luminance (for choosing
 // which lobe to sample; any positive share would be unbiased).
 WP_FN float ggxMultipleScatteringShare(vec3 f0, float roughness, float cosO) {
-  float meanAlbedo = bsdfTableMeanAt(WP_TABLE_GGX_WHITE_MEAN, roughness);
+  float meanAlbedo = ggxMeanAlbedos(roughness).white;
   if (1.0f - meanAlbedo < 1e-4f) {
     return 0.0f;
   }

@@ -62,6 +62,3 @@ WP_BINDINGS(WP_GLSL_BINDING)
 // The render parameters, as the stages take them (from the uniform block above).
 RenderParams renderParams() { return paramsEntries[paramsEntry]; }
 
-// The BSDF's constant tables (bsdf_table_lookup.h reads WP_BSDF_TABLE; C++ and OpenCL
-// index the header's array).
-#define WP_BSDF_TABLE(i) WP_LOAD(bsdfTables, i)

@@ -12,7 +12,7 @@
 #include "bvh/gpu_scene.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "shaders/common/bsdf_tables.h"
+#include "shaders/common/bsdf_table_lookup.h"
 #include "spirv/accumulate_spv.h"
 #include "spirv/advance_spv.h"
 #include "spirv/connect_motion_spv.h"
@@ -47,6 +47,16 @@ SpirvCode spirvFor(Kernel kernel, bool motion) {
     case Kernel::Accumulate: return {accumulate_spv, sizeof(accumulate_spv)};
   }
   return {nullptr, 0};
+}
+
+// The BSDF tables as the stages fetch them: quad i (bsdf_table_lookup.h) as texel i.
+std::vector<gpu::vec4> packBsdfTableQuads() {
+  std::vector<gpu::vec4> texels(WP_TABLE_QUADS);
+  for (uint32_t i = 0; i < WP_TABLE_QUADS; ++i) {
+    const gpu::BsdfTableQuad quad = gpu::bsdfTableQuad(i);
+    texels[i] = gpu::vec4(quad.row, quad.nextRow);
+  }
+  return texels;
 }
 
 VkDescriptorType descriptorType(uint32_t binding) {
@@ -118,8 +128,10 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
     VK_CHECK(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool_));
   }
   countersReadback_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-  bsdfTables_ = VulkanBuffer(*context_, sizeof(gpu::kBsdfTables), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
-  bsdfTables_.upload(gpu::kBsdfTables, sizeof(gpu::kBsdfTables));
+  const std::vector<gpu::vec4> bsdfTableTexels = packBsdfTableQuads();
+  bsdfTables_ = VulkanBuffer(*context_, bsdfTableTexels.size() * sizeof(gpu::vec4),
+                             VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
+  bsdfTables_.upload(bsdfTableTexels.data(), bsdfTableTexels.size() * sizeof(gpu::vec4));
 }
 
 VulkanBackend::~VulkanBackend() {

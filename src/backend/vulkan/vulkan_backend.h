@@ -104,7 +104,7 @@ private:
   std::vector<VkBufferView> texelViews_;
 
   std::array<VulkanBuffer, kSceneBindings.size()> sceneBuffers_;  // for kSceneBindings[i]
-  VulkanBuffer bsdfTables_;  // gpu::kBsdfTables (energy_compensation.h)
+  VulkanBuffer bsdfTables_;  // gpu::kBsdfTables as quads (bsdf_table_lookup.h)
   VulkanBuffer params_;
   VulkanBuffer rays_;
   VulkanBuffer hits_;
