@@ -187,6 +187,7 @@ INSTANTIATE_TEST_SUITE_P(Backend, Determinism, kBackends, backendName);
 //   random decisions a median near 0. A median below 0.05 shows that the backends drew the
 //   same samples, which a mean test alone cannot tell from a different unbiased estimator.
 void expectBackendsAgree(const std::filesystem::path& scene, const std::vector<std::string>& flags) {
+  SCOPED_TRACE(scene.filename().string());
   RadianceImage vulkan = renderExr("vulkan", scene, flags);
   RadianceImage opencl = renderExr("opencl", scene, flags);
   ASSERT_EQ(vulkan.mean.size(), opencl.mean.size());
@@ -224,8 +225,9 @@ TEST(BackendAgreement, VulkanAndOpenClRenderTheSameImageFromTheSameSeed) {
 
 // glTF's BRDF reads the BSDF tables (bsdf_table_lookup.h), which Vulkan fetches from texels
 // the host packs and OpenCL from the header's array: the dielectric's layering reads both GGX
-// tables and both of their means, a rough metal the white table and mean (energy_compensation.h),
-// sheen its own table. A texel packed from the wrong entries shifts Vulkan's image alone.
+// tables and both of their means, a rough metal the white table and mean
+// (energy_compensation.h), sheen its own table. A texel packed from the wrong entries shifts
+// Vulkan's image alone.
 TEST(BackendAgreement, GltfMaterialsReadTheSameBsdfTablesOnBothBackends) {
   expectBackendsAgree(sourceDirectory() / "assets" / "materials.gltf",
                       {"--width", "64", "--height", "48", "--spp", "32", "--seed", "5", "--max-depth", "8"});

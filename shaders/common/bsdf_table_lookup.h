@@ -20,7 +20,8 @@ WP_BEGIN
 #define WP_TABLE_SHEEN 2112u             // the sheen lobe's E(cos, r) with colour 1 (sheen.h)
 #define WP_TABLE_FLOATS 3136u
 #if defined(__cplusplus)
-static_assert(WP_TABLE_GGX_SCHLICK_MEAN == WP_TABLE_GGX_WHITE_MEAN + WP_TABLE_SIZE, "ggxMeanAlbedos reads both in one quad");
+static_assert(WP_TABLE_GGX_SCHLICK_MEAN == WP_TABLE_GGX_WHITE_MEAN + WP_TABLE_SIZE,
+              "ggxMeanAlbedos reads both mean tables in one quad");
 #endif
 // The quads that lie wholly inside the tables (bsdfTableQuad): every i up to the last
 // entry's lower-left neighbour.
