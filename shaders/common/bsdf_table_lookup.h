@@ -23,8 +23,8 @@ WP_BEGIN
 static_assert(WP_TABLE_GGX_SCHLICK_MEAN == WP_TABLE_GGX_WHITE_MEAN + WP_TABLE_SIZE,
               "ggxMeanAlbedos reads both mean tables in one quad");
 #endif
-// The quads that lie wholly inside the tables (bsdfTableQuad): every i up to the last
-// entry's lower-left neighbour.
+// How many quads (bsdfTableQuad) lie wholly inside the tables: those whose last entry,
+// i + N + 1, is at most the tables' last.
 #define WP_TABLE_QUADS (WP_TABLE_FLOATS - WP_TABLE_SIZE - 1u)
 
 // The four entries a bilinear lookup at entry i reads: i and i + 1 (a row of a table, at two
@@ -57,6 +57,22 @@ WP_FN BsdfTableQuad bsdfTableQuad(uint i) {
 }
 #endif
 
+// Where a lookup at `value` (in [0, 1], clamped) falls along a table's axis of N entries at
+// j / (N - 1): the lower entry, at most N - 2 so that the next one exists, and the next
+// entry's weight.
+WP_STRUCT(BsdfTableStep)
+  uint index;
+  float weight;
+WP_STRUCT_END(BsdfTableStep)
+
+WP_FN BsdfTableStep bsdfTableStep(float value) {
+  float x = clamp(value, 0.0f, 1.0f) * toFloat(WP_TABLE_SIZE - 1u);
+  BsdfTableStep step;
+  step.index = min(toUint(x), WP_TABLE_SIZE - 2u);
+  step.weight = x - toFloat(step.index);
+  return step;
+}
+
 // Where a bilinear lookup at (roughness, cos(theta)) reads an N x N table: the entry of its
 // quad, counted from the table's start, and the weights of the next column and row.
 WP_STRUCT(BsdfTablePoint)
@@ -66,15 +82,12 @@ WP_STRUCT(BsdfTablePoint)
 WP_STRUCT_END(BsdfTablePoint)
 
 WP_FN BsdfTablePoint bsdfTablePoint(float roughness, float cosTheta) {
-  float last = toFloat(WP_TABLE_SIZE - 1u);
-  float x = clamp(cosTheta, 0.0f, 1.0f) * last;
-  float y = clamp(roughness, 0.0f, 1.0f) * last;
-  uint column = min(toUint(x), WP_TABLE_SIZE - 2u);
-  uint row = min(toUint(y), WP_TABLE_SIZE - 2u);
+  BsdfTableStep column = bsdfTableStep(cosTheta);
+  BsdfTableStep row = bsdfTableStep(roughness);
   BsdfTablePoint point;
-  point.entry = row * WP_TABLE_SIZE + column;
-  point.columnWeight = x - toFloat(column);
-  point.rowWeight = y - toFloat(row);
+  point.entry = row.index * WP_TABLE_SIZE + column.index;
+  point.columnWeight = column.weight;
+  point.rowWeight = row.weight;
   return point;
 }
 
@@ -98,13 +111,11 @@ WP_STRUCT_END(GgxMeanAlbedos)
 
 // Linear interpolation of both per-roughness tables, from one quad.
 WP_FN GgxMeanAlbedos ggxMeanAlbedos(float roughness) {
-  float y = clamp(roughness, 0.0f, 1.0f) * toFloat(WP_TABLE_SIZE - 1u);
-  uint row = min(toUint(y), WP_TABLE_SIZE - 2u);
-  float weight = y - toFloat(row);
-  BsdfTableQuad quad = bsdfTableQuad(WP_TABLE_GGX_WHITE_MEAN + row);
+  BsdfTableStep row = bsdfTableStep(roughness);
+  BsdfTableQuad quad = bsdfTableQuad(WP_TABLE_GGX_WHITE_MEAN + row.index);
   GgxMeanAlbedos means;
-  means.white = mix(quad.row.x, quad.row.y, weight);
-  means.schlick = mix(quad.nextRow.x, quad.nextRow.y, weight);
+  means.white = mix(quad.row.x, quad.row.y, row.weight);
+  means.schlick = mix(quad.nextRow.x, quad.nextRow.y, row.weight);
   return means;
 }
 

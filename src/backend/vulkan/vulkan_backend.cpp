@@ -129,9 +129,9 @@ VulkanBackend::VulkanBackend(int deviceIndex, bool validation)
   }
   countersReadback_ = VulkanBuffer(*context_, sizeof(gpu::QueueCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   const std::vector<gpu::vec4> bsdfTableTexels = packBsdfTableQuads();
-  bsdfTables_ = VulkanBuffer(*context_, bsdfTableTexels.size() * sizeof(gpu::vec4),
-                             VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
-  bsdfTables_.upload(bsdfTableTexels.data(), bsdfTableTexels.size() * sizeof(gpu::vec4));
+  const size_t bsdfTableBytes = bsdfTableTexels.size() * sizeof(gpu::vec4);
+  bsdfTables_ = VulkanBuffer(*context_, bsdfTableBytes, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, false);
+  bsdfTables_.upload(bsdfTableTexels.data(), bsdfTableBytes);
 }
 
 VulkanBackend::~VulkanBackend() {
