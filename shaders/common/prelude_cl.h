@@ -27,6 +27,11 @@ typedef uint4 uvec4;
 // Cornell box.
 #define WP_WARP_SIN(angle) native_sin(angle)
 #define WP_WARP_COS(angle) native_cos(angle)
+// x^y in a BSDF's terms (x >= 0, y > 0; x = 0 gives 0), as exp2 of a product: its relative
+// error, a few units in the last place times |y log2(x)|, is far below what a distribution or
+// a fit of one needs. PoCL's pow computes in extended precision: 30% of a render of the sheen
+// samples, and their shade twice as long.
+#define WP_BSDF_POW(x, y) exp2((y) * log2(x))
 #define WP_BEGIN
 #define WP_END
 #define WP_FN

@@ -36,6 +36,8 @@ inline thread_local DeepestStacks deepestStacks;
 // Sine and cosine of a sample warp's angle (prelude_cl.h): the host's are the reference.
 #define WP_WARP_SIN(angle) std::sin(angle)
 #define WP_WARP_COS(angle) std::cos(angle)
+// x^y in a BSDF's terms (prelude_cl.h): the host's pow is the reference.
+#define WP_BSDF_POW(x, y) std::pow((x), (y))
 #define WP_BEGIN namespace wp::gpu {
 #define WP_END }
 #define WP_FN inline

@@ -15,6 +15,8 @@
 // Sine and cosine of a sample warp's angle (prelude_cl.h): GLSL's own precision suffices.
 #define WP_WARP_SIN(angle) sin(angle)
 #define WP_WARP_COS(angle) cos(angle)
+// x^y in a BSDF's terms (prelude_cl.h): GLSL's pow is exp2 of a product already.
+#define WP_BSDF_POW(x, y) pow((x), (y))
 #define WP_BEGIN
 #define WP_END
 #define WP_FN

@@ -21,7 +21,7 @@ WP_FN float sheenAlpha(float roughness) { return clamp(roughness, WP_SHEEN_MIN_A
 WP_FN float charlieD(float alpha, vec3 h) {
   float sin2 = max(h.x * h.x + h.y * h.y, 1e-12f);
   float inverse = 1.0f / alpha;
-  return (2.0f + inverse) * pow(sin2, 0.5f * inverse) / (2.0f * WP_PI);
+  return (2.0f + inverse) * WP_BSDF_POW(sin2, 0.5f * inverse) / (2.0f * WP_PI);
 }
 
 // The fitted exponent of Charlie's Lambda (the extension's l(x, alpha)).
@@ -32,7 +32,7 @@ WP_FN float charlieL(float x, float alpha) {
   float c = mix(0.19823f, 0.16801f, t);
   float d = mix(-1.97760f, -1.27393f, t);
   float e = mix(-4.32054f, -4.85967f, t);
-  return a / (1.0f + b * pow(x, c)) + d * x + e;
+  return a / (1.0f + b * WP_BSDF_POW(x, c)) + d * x + e;
 }
 
 WP_FN float charlieLambda(float alpha, float cosTheta) {
