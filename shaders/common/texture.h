@@ -28,6 +28,11 @@ WP_FN int wrapTexel(int i, int size, uint mode) {
   return floorMod(i, size);
 }
 
+// The sRGB decode (IEC 61966-2-1) of c in [0, 1], in single precision.
+WP_FN float srgbToLinear(float c) {
+  return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
+}
+
 // The sRGB decode of the 8-bit value `byte`. C++ and OpenCL read the exact decode from the
 // generated table: PoCL's full-precision pow took 43% of a render of a Blender scene with one
 // base colour texture (a bilinear lookup decodes twelve channels). GPUs, and lavapipe, compute
@@ -35,10 +40,7 @@ WP_FN int wrapTexel(int i, int size, uint mode) {
 #ifdef WP_BUFFERS_AS_ARGUMENTS
 WP_FN float srgbByteToLinear(uint byte) { return kSrgbToLinear[byte]; }
 #else
-WP_FN float srgbByteToLinear(uint byte) {
-  float c = toFloat(byte) * (1.0f / 255.0f);
-  return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
-}
+WP_FN float srgbByteToLinear(uint byte) { return srgbToLinear(toFloat(byte) * (1.0f / 255.0f)); }
 #endif
 
 // Texel (x, y), already wrapped, as linear RGBA in [0, 1].

@@ -3,10 +3,10 @@
 # (KHR_materials_emissive_strength), a glass sphere (KHR_materials_transmission), a point and
 # a spot lamp, a camera. docs/performance.md times wavepath and Cycles on it.
 # blender -b --factory-startup -P tools/blender/export_textured_scene.py -- OUT.glb
-import bpy, math, os, sys, tempfile
+import bpy, math, os, shutil, sys, tempfile
 out = sys.argv[sys.argv.index("--") + 1]
 bpy.ops.wm.read_factory_settings(use_empty=True)
-images = tempfile.mkdtemp()
+images = tempfile.mkdtemp()  # the PNGs, until the exporter has embedded them
 def image(name, size, texel):  # an RGBA8 PNG of texel(x, y) -> (r, g, b, a), packed into the file
     img = bpy.data.images.new(name, size, size, alpha=False)
     img.pixels = [v for y in range(size) for x in range(size) for v in texel(x, y)]
@@ -36,7 +36,7 @@ glass, p, t = principled("glass")
 p.inputs["Base Color"].default_value = (0.95, 0.95, 1.0, 1); p.inputs["Transmission"].default_value = 1.0
 p.inputs["Roughness"].default_value = 0.0; p.inputs["IOR"].default_value = 1.5
 def placed(material):
-    o = bpy.context.active_object; o.data.materials.append(material); return o
+    bpy.context.active_object.data.materials.append(material)
 bpy.ops.mesh.primitive_plane_add(size=10); placed(ground)
 bpy.ops.mesh.primitive_cube_add(size=1.0, location=(-1.3, 0.3, 0.5), rotation=(0, 0, math.radians(30))); placed(bumpy)
 bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=0.35, location=(0.2, 0.8, 0.35))
@@ -51,3 +51,4 @@ spot.energy = 500.0; spot.spot_size = math.radians(50); spot.spot_blend = 0.3; s
 bpy.ops.object.camera_add(location=(0, -5.5, 2.4), rotation=(math.radians(70), 0, 0))
 bpy.context.scene.camera = bpy.context.active_object
 bpy.ops.export_scene.gltf(filepath=out, export_lights=True, export_cameras=True)
+shutil.rmtree(images)
