@@ -176,6 +176,94 @@ TEST(SceneFeatures, InstancedWhereTheTopLevelsRootIsANode) {
   EXPECT_TRUE(empty.features().instanced);
 }
 
+// The project's box with texture coordinates on every wall, (x + z, y + z) times 3, which no
+// face of the box sees as degenerate (a normal map's frame is their gradient), and two 4x4
+// textures of random texels: texture 0 colour (sRGB), texture 1 data (linear). Its materials
+// fill no slot yet.
+Scene texturedBox() {
+  Scene scene = assetScene("cornell-box.gltf");
+  for (Mesh& mesh : scene.meshes) {
+    mesh.uvs.clear();
+    for (const glm::vec3& p : mesh.positions) mesh.uvs.push_back(3.0f * glm::vec2(p.x + p.z, p.y + p.z));
+  }
+  std::mt19937 random(7);
+  for (bool srgb : {true, false}) {
+    Texture texture;
+    texture.width = texture.height = 4;
+    for (int i = 0; i < 16; ++i) texture.rgba.push_back(uint32_t(random()) | 0xff000000u);
+    texture.srgb = srgb;
+    scene.textures.push_back(texture);
+  }
+  return scene;
+}
+
+// Each material texture slot, the scene feature that compiles its lookups in, and whether it
+// holds colour (texture 0 of texturedBox) or data (texture 1).
+struct TextureSlot {
+  int Material::*slot;
+  bool SceneFeatures::*feature;
+  bool colour;
+};
+const TextureSlot kTextureSlots[] = {
+    {&Material::baseColorTexture, &SceneFeatures::baseColorTexture, true},
+    {&Material::metallicRoughnessTexture, &SceneFeatures::metallicRoughnessTexture, false},
+    {&Material::normalTexture, &SceneFeatures::normalTexture, false},
+    {&Material::emissiveTexture, &SceneFeatures::emissiveTexture, true},
+    {&Material::specularTexture, &SceneFeatures::extensionTextures, false},
+    {&Material::specularColorTexture, &SceneFeatures::extensionTextures, true},
+    {&Material::sheenColorTexture, &SceneFeatures::extensionTextures, true},
+    {&Material::sheenRoughnessTexture, &SceneFeatures::extensionTextures, false},
+    {&Material::clearcoatTexture, &SceneFeatures::extensionTextures, false},
+    {&Material::clearcoatRoughnessTexture, &SceneFeatures::extensionTextures, false},
+    {&Material::clearcoatNormalTexture, &SceneFeatures::extensionTextures, false}};
+const std::pair<const char*, bool SceneFeatures::*> kTextureFeatures[] = {
+    {"base colour", &SceneFeatures::baseColorTexture},
+    {"metallic-roughness", &SceneFeatures::metallicRoughnessTexture},
+    {"normal", &SceneFeatures::normalTexture},
+    {"emissive", &SceneFeatures::emissiveTexture},
+    {"extensions'", &SceneFeatures::extensionTextures}};
+
+TEST(SceneFeatures, TextureSlotsAreThoseTheUsedMaterialsFill) {
+  for (const auto& [name, feature] : kTextureFeatures) {
+    EXPECT_FALSE(packScene(texturedBox()).features().*feature) << name << ": no material has a texture";
+  }
+  for (const TextureSlot& slot : kTextureSlots) {
+    Scene scene = texturedBox();
+    // A material no surface has fills the slot: no code for it...
+    Material unused = scene.materials[0];
+    unused.*slot.slot = slot.colour ? 0 : 1;
+    scene.materials.push_back(unused);
+    for (const auto& [name, feature] : kTextureFeatures) {
+      EXPECT_FALSE(packScene(scene).features().*feature) << name;
+    }
+    // ...until a triangle has it; the other slots' features stay off.
+    scene.meshes[0].materials[0] = uint32_t(scene.materials.size() - 1);
+    const SceneFeatures f = packScene(scene).features();
+    for (const auto& [name, feature] : kTextureFeatures) {
+      EXPECT_EQ(f.*feature, feature == slot.feature) << name;
+    }
+  }
+}
+
+// The textured box with the slots `filled` (members of kTextureSlots) filled on glTF materials
+// with a sheen and a clear coat, so that each slot's texture changes the image.
+Scene texturedBoxFilling(const std::vector<int Material::*>& filled) {
+  Scene scene = texturedBox();
+  for (Material& m : scene.materials) {
+    m.bsdf = Material::Bsdf::Gltf;
+    m.metallic = 0.3f;
+    m.roughness = 0.5f;
+    m.sheenColor = glm::vec3(0.5f);
+    m.sheenRoughness = 0.5f;
+    m.clearcoat = 0.5f;
+    m.clearcoatRoughness = 0.2f;
+    for (const TextureSlot& slot : kTextureSlots) {
+      if (std::find(filled.begin(), filled.end(), slot.slot) != filled.end()) m.*slot.slot = slot.colour ? 0 : 1;
+    }
+  }
+  return scene;
+}
+
 // How renderVulkan and renderOpenCl build the stages and the scene.
 struct StageBuild {
   bool split = true;            // shade split by class where the scene has both (Vulkan)
@@ -255,7 +343,8 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   // ideal diffuse), its top level holds one instance and it has no planes and no punctual
   // lights, materials.gltf keeps most, sky-spheres.gltf samples its sky map among spheres and
   // planes, lamps.gltf without metalness keeps glTF's BRDF without its metal lobe and has
-  // punctual lights alone, and the box with a spot lamp has lights of both kinds; between them
+  // punctual lights alone, the box with a spot lamp has lights of both kinds, and the textured
+  // box fills the slots of a Blender export (base colour, normal) and then the others; between them
   // each of the constants below is on in one case and off in another. The light selection is
   // the render's: power everywhere but in two cases, which select lamps.gltf's lights and the
   // box's two kinds by solid angle (its constant on).
@@ -266,17 +355,29 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
     bool baked = false;  // its meshes placed once baked into one instance, as the renderer does
     bool skyMap = false;  // lit by the assets' sky map instead of its own sky
     bool spotLamp = false;  // the project's box with a spot lamp (boxWithSpotLamp)
+    // The textured box (texturedBoxFilling) with these slots filled, where there are any.
+    std::vector<int Material::*> textures;
   };
   std::vector<SceneFeatures> covered;
-  for (const Case c : {Case{.asset = "cornell-box.gltf", .baked = true}, Case{.asset = "materials.gltf"},
+  for (const Case& c : {Case{.asset = "cornell-box.gltf", .baked = true}, Case{.asset = "materials.gltf"},
                        Case{.asset = "sky-spheres.gltf", .skyMap = true},
                        Case{.asset = "lamps.gltf", .withoutMetal = true},
                        Case{.asset = "lamps.gltf", .solidAngle = true},
                        Case{.asset = "cornell-box.gltf", .spotLamp = true},
-                       Case{.asset = "cornell-box.gltf", .solidAngle = true, .spotLamp = true}}) {
+                       Case{.asset = "cornell-box.gltf", .solidAngle = true, .spotLamp = true},
+                       // The slots a Blender export fills, then the others.
+                       Case{.asset = "cornell-box.gltf",
+                            .textures = {&Material::baseColorTexture, &Material::normalTexture}},
+                       Case{.asset = "cornell-box.gltf",
+                            .textures = {&Material::metallicRoughnessTexture, &Material::emissiveTexture,
+                                         &Material::specularTexture, &Material::specularColorTexture,
+                                         &Material::sheenColorTexture, &Material::sheenRoughnessTexture,
+                                         &Material::clearcoatTexture, &Material::clearcoatRoughnessTexture,
+                                         &Material::clearcoatNormalTexture}}}) {
     SCOPED_TRACE(std::string(c.asset) + (c.spotLamp ? " with a spot lamp" : "") +
+                 (!c.textures.empty() ? ", textured (" + std::to_string(c.textures.size()) + " slots)" : "") +
                  (c.solidAngle ? ", by solid angle" : ""));
-    Scene scene = c.spotLamp ? boxWithSpotLamp() : assetScene(c.asset);
+    Scene scene = !c.textures.empty() ? texturedBoxFilling(c.textures) : c.spotLamp ? boxWithSpotLamp() : assetScene(c.asset);
     if (c.baked) scene = bakeSingleUseMeshes(scene);
     if (c.skyMap) scene.sky = assetSkyMap();
     GpuScene packed = packScene(scene);
@@ -304,6 +405,7 @@ TEST(SceneFeatures, StagesSpecializedToTheSceneMakeTheSameImageBitForBit) {
   EXPECT_TRUE(both(&SceneFeatures::spheres));
   EXPECT_TRUE(both(&SceneFeatures::skyMap));
   EXPECT_TRUE(both(&SceneFeatures::punctual));
+  for (const auto& [name, feature] : kTextureFeatures) EXPECT_TRUE(both(feature)) << name;
 }
 
 TEST(Samplers, StagesSpecializedToTheRendersSamplerMakeTheSameImageBitForBit) {

@@ -40,8 +40,8 @@ WP_FN float coverageAlpha(WP_BUFFERS GpuMaterial m, uint primitive, vec2 b) {
   GpuTriangleShading shading = WP_LOAD(triangleShading, primitive);
   float alpha = m.baseColor.w * colorAt(shading, b).w;
   TexCoords c = texCoordsAt(shading, b);
-  if (textureApplies(WP_BUFFERS_ARG m.info.y, c)) {
-    alpha *= sampleTexture(WP_BUFFERS_ARG m.info.y, c).w;
+  if (textureApplies(WP_BUFFERS_ARG materialBaseColorTexture(m), c)) {
+    alpha *= sampleTexture(WP_BUFFERS_ARG materialBaseColorTexture(m), c).w;
   }
   return alpha;
 }

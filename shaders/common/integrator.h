@@ -142,13 +142,13 @@ WP_FN_INLINED GpuMaterial texturedLayers(WP_BUFFERS GpuMaterial m, TexCoords c) 
 WP_FN_INLINED GpuMaterial texturedMaterial(WP_BUFFERS GpuMaterial m, SurfaceHit s) {
   m.baseColor = m.baseColor * s.color;
   TexCoords c = s.texCoords;
-  vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), m.emissiveMap.x, c);
+  vec3 emission = texturedEmission(WP_BUFFERS_ARG xyz(m.emission), materialEmissiveTexture(m), c);
   m.emission = make_vec4(emission.x, emission.y, emission.z, m.emission.w);
-  if (textureApplies(WP_BUFFERS_ARG m.info.y, c)) {
-    m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG m.info.y, c);
+  if (textureApplies(WP_BUFFERS_ARG materialBaseColorTexture(m), c)) {
+    m.baseColor = m.baseColor * sampleTexture(WP_BUFFERS_ARG materialBaseColorTexture(m), c);
   }
-  if (textureApplies(WP_BUFFERS_ARG m.info.z, c)) {
-    vec4 t = sampleTexture(WP_BUFFERS_ARG m.info.z, c);
+  if (textureApplies(WP_BUFFERS_ARG materialMetallicRoughnessTexture(m), c)) {
+    vec4 t = sampleTexture(WP_BUFFERS_ARG materialMetallicRoughnessTexture(m), c);
     m.surface.x *= t.z;
     m.surface.y *= t.y;
   }
@@ -422,7 +422,7 @@ WP_FN_INLINED ShadeResult shadeHit(WP_BUFFERS RenderParams params, PathRay ray, 
   SurfaceHit s = surfaceAt(WP_BUFFERS_ARG instanceField, primitive, rayOrigin(ray) + direction * t, rayTime(ray));
   GpuMaterial m = texturedMaterial(WP_BUFFERS_ARG WP_LOAD(materials, s.material), s);
   SurfaceHit unmapped = s;
-  s.shadingNormal = normalMapped(WP_BUFFERS_ARG m.info.w, m.normalMap.x, s);
+  s.shadingNormal = normalMapped(WP_BUFFERS_ARG materialNormalTexture(m), m.normalMap.x, s);
   vec3 wo = -direction;
   if (dot(s.normal, wo) < 0.0f) {
     throughput = throughput * beerLawTransmittance(xyz(m.attenuation), m.attenuation.w, t);

@@ -359,13 +359,32 @@ WP_FN float materialClearcoatNormalScale(GpuMaterial m) { return m.clearcoat.z; 
 WP_FN vec3 materialClearcoatNormal(GpuMaterial m) {
   return make_vec3(m.clearcoatNormal.x, m.clearcoatNormal.y, m.clearcoatNormal.z);
 }
-WP_FN uint materialSpecularTexture(GpuMaterial m) { return m.layerMaps.x; }
-WP_FN uint materialSpecularColorTexture(GpuMaterial m) { return m.layerMaps.y; }
-WP_FN uint materialSheenColorTexture(GpuMaterial m) { return m.layerMaps.z; }
-WP_FN uint materialSheenRoughnessTexture(GpuMaterial m) { return m.layerMaps.w; }
-WP_FN uint materialClearcoatTexture(GpuMaterial m) { return m.clearcoatMaps.x; }
-WP_FN uint materialClearcoatRoughnessTexture(GpuMaterial m) { return m.clearcoatMaps.y; }
-WP_FN uint materialClearcoatNormalTexture(GpuMaterial m) { return m.clearcoatMaps.z; }
+
+// A material's textures, slot by slot (WP_INVALID: none). Each slot reads through the scene's
+// constant for it (WP_SCENE_*_TEXTURE, GpuScene::features): where no material of the scene's
+// surfaces fills a slot, the slot reads as none in Vulkan's and OpenCL's stages, so its lookup
+// compiles away. lavapipe ran every slot's lookup for every hit (docs/performance.md).
+WP_FN uint materialBaseColorTexture(GpuMaterial m) { return WP_SCENE_BASE_COLOR_TEXTURE ? m.info.y : WP_INVALID; }
+WP_FN uint materialMetallicRoughnessTexture(GpuMaterial m) {
+  return WP_SCENE_METALLIC_ROUGHNESS_TEXTURE ? m.info.z : WP_INVALID;
+}
+WP_FN uint materialNormalTexture(GpuMaterial m) { return WP_SCENE_NORMAL_TEXTURE ? m.info.w : WP_INVALID; }
+WP_FN uint materialEmissiveTexture(GpuMaterial m) { return WP_SCENE_EMISSIVE_TEXTURE ? m.emissiveMap.x : WP_INVALID; }
+WP_FN uint materialSpecularTexture(GpuMaterial m) { return WP_SCENE_EXTENSION_TEXTURES ? m.layerMaps.x : WP_INVALID; }
+WP_FN uint materialSpecularColorTexture(GpuMaterial m) {
+  return WP_SCENE_EXTENSION_TEXTURES ? m.layerMaps.y : WP_INVALID;
+}
+WP_FN uint materialSheenColorTexture(GpuMaterial m) { return WP_SCENE_EXTENSION_TEXTURES ? m.layerMaps.z : WP_INVALID; }
+WP_FN uint materialSheenRoughnessTexture(GpuMaterial m) {
+  return WP_SCENE_EXTENSION_TEXTURES ? m.layerMaps.w : WP_INVALID;
+}
+WP_FN uint materialClearcoatTexture(GpuMaterial m) { return WP_SCENE_EXTENSION_TEXTURES ? m.clearcoatMaps.x : WP_INVALID; }
+WP_FN uint materialClearcoatRoughnessTexture(GpuMaterial m) {
+  return WP_SCENE_EXTENSION_TEXTURES ? m.clearcoatMaps.y : WP_INVALID;
+}
+WP_FN uint materialClearcoatNormalTexture(GpuMaterial m) {
+  return WP_SCENE_EXTENSION_TEXTURES ? m.clearcoatMaps.z : WP_INVALID;
+}
 
 // GpuMaterial alpha modes (glTF alphaMode): what the base colour's alpha means.
 #define WP_ALPHA_OPAQUE 0u  // nothing: the surface is opaque

@@ -53,7 +53,9 @@ WP_FN vec3 triangleLightEdge1(GpuLight light) { return make_vec3(light.edge1.x, 
 WP_FN vec3 triangleLightEdge2(GpuLight light) { return make_vec3(light.edge2.x, light.edge2.y, light.edge2.z); }
 WP_FN float triangleLightArea(GpuLight light) { return light.v0.w; }
 WP_FN uint triangleLightShading(GpuLight light) { return light.info.z; }
-WP_FN uint triangleLightTexture(GpuLight light) { return light.info.w; }
+// The emitter's emissive texture, read as none where no material has one (as the material's,
+// layout.h).
+WP_FN uint triangleLightTexture(GpuLight light) { return WP_SCENE_EMISSIVE_TEXTURE ? light.info.w : WP_INVALID; }
 
 WP_FN vec3 punctualPositionAtOpen(GpuLight light) { return make_vec3(light.v0.x, light.v0.y, light.v0.z); }
 WP_FN vec3 punctualPositionAtClose(GpuLight light) { return make_vec3(light.edge2.x, light.edge2.y, light.edge2.z); }

@@ -46,7 +46,11 @@ inline thread_local DeepestStacks deepestStacks;
 // everything.
 #define WP_SCENE_ALPHA_TESTED true
 #define WP_SCENE_LAYERED true
-#define WP_SCENE_TEXTURED true
+#define WP_SCENE_BASE_COLOR_TEXTURE true
+#define WP_SCENE_METALLIC_ROUGHNESS_TEXTURE true
+#define WP_SCENE_NORMAL_TEXTURE true
+#define WP_SCENE_EMISSIVE_TEXTURE true
+#define WP_SCENE_EXTENSION_TEXTURES true
 #define WP_SCENE_TRANSMISSIVE true
 #define WP_SCENE_MICROFACET true
 #define WP_SCENE_METALLIC true

@@ -49,7 +49,7 @@
 // for it even where it never runs). C++ and OpenCL keep them all true.
 layout(constant_id = 0) const bool WP_SCENE_ALPHA_TESTED = true;  // traverse.h
 layout(constant_id = 1) const bool WP_SCENE_LAYERED = true;       // material.h
-layout(constant_id = 2) const bool WP_SCENE_TEXTURED = true;      // texture.h
+layout(constant_id = 2) const bool WP_SCENE_BASE_COLOR_TEXTURE = true;  // layout.h
 layout(constant_id = 3) const bool WP_SCENE_TRANSMISSIVE = true;  // material.h
 layout(constant_id = 4) const bool WP_SCENE_MICROFACET = true;    // bsdf.h
 layout(constant_id = 5) const bool WP_SCENE_METALLIC = true;      // material.h
@@ -85,6 +85,14 @@ layout(constant_id = 19) const bool WP_RENDER_FEATURE_PASSES = true;
 // Whether the render draws from the independent sampler (RenderParams.samplerKind, sampler.h):
 // false compiles it out of a Sobol render's stages.
 layout(constant_id = 20) const bool WP_RENDER_INDEPENDENT_SAMPLER = true;
+// Which of the materials' texture slots the scene fills (layout.h; the base colour's is
+// constant 2): lavapipe ran the lookups of all eleven slots for every hit, where a scene made
+// in Blender fills two (the base colour and the normal map).
+layout(constant_id = 21) const bool WP_SCENE_METALLIC_ROUGHNESS_TEXTURE = true;
+layout(constant_id = 22) const bool WP_SCENE_NORMAL_TEXTURE = true;
+layout(constant_id = 23) const bool WP_SCENE_EMISSIVE_TEXTURE = true;
+// KHR_materials_specular's, _sheen's and _clearcoat's textures.
+layout(constant_id = 24) const bool WP_SCENE_EXTENSION_TEXTURES = true;
 
 float fabs(float x) { return abs(x); }
 vec3 fabs(vec3 v) { return abs(v); }

@@ -92,7 +92,7 @@ WP_FN vec2 textureUv(GpuTexture t, TexCoords c) {
 // Whether texture `index` (WP_INVALID: none) applies at c: it exists and the surface has its
 // coordinate set (without it the slot's factor stands alone).
 WP_FN bool textureApplies(WP_BUFFERS uint index, TexCoords c) {
-  if (!WP_SCENE_TEXTURED || index == WP_INVALID) {  // (false: Vulkan and OpenCL compile lookups away)
+  if (index == WP_INVALID) {  // (a constant where the scene lacks the slot: layout.h)
     return false;
   }
   return textureUsesTexCoord1(WP_LOAD(textures, index)) ? c.hasSet1 : c.hasSet0;

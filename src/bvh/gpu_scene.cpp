@@ -496,7 +496,6 @@ SceneFeatures GpuScene::features() const {
   SceneFeatures f;
   f.alphaTested = std::any_of(triangles.begin(), triangles.end(),
                               [](const gpu::GpuTriangle& t) { return gpu::triangleAlphaTested(t); });
-  f.textured = !textures.empty();
   f.skySampled = sky.selectionProbability > 0.0f;
   f.instanced = gpu::entryCount(topLevelEntry()) == 0;
   f.planes = !planes.empty();
@@ -521,6 +520,7 @@ SceneFeatures GpuScene::features() const {
     needs |= materialNeeds;
     f.diffuse = f.diffuse || materialNeeds == 0;
     f.emissive = f.emissive || gpu::materialEmits(materials[m]);
+    f.addTextureSlots(materials[m]);
   }
   return f.withNeeds(needs);
 }
@@ -551,20 +551,41 @@ SceneFeatures SceneFeatures::withNeeds(uint32_t needs) const {
   return f;
 }
 
+void SceneFeatures::addTextureSlots(const gpu::GpuMaterial& m) {
+  auto fills = [](uint32_t texture) { return texture != WP_INVALID; };
+  baseColorTexture = baseColorTexture || fills(gpu::materialBaseColorTexture(m));
+  metallicRoughnessTexture = metallicRoughnessTexture || fills(gpu::materialMetallicRoughnessTexture(m));
+  normalTexture = normalTexture || fills(gpu::materialNormalTexture(m));
+  emissiveTexture = emissiveTexture || fills(gpu::materialEmissiveTexture(m));
+  const uint32_t extensionSlots[] = {gpu::materialSpecularTexture(m),       gpu::materialSpecularColorTexture(m),
+                                     gpu::materialSheenColorTexture(m),     gpu::materialSheenRoughnessTexture(m),
+                                     gpu::materialClearcoatTexture(m),      gpu::materialClearcoatRoughnessTexture(m),
+                                     gpu::materialClearcoatNormalTexture(m)};
+  extensionTextures = extensionTextures || std::any_of(std::begin(extensionSlots), std::end(extensionSlots), fills);
+}
+
 std::vector<std::pair<const char*, bool>> SceneFeatures::macros() const {
   return {{"WP_SCENE_ALPHA_TESTED", alphaTested}, {"WP_SCENE_LAYERED", layered},
-          {"WP_SCENE_TEXTURED", textured},        {"WP_SCENE_TRANSMISSIVE", transmissive},
+          {"WP_SCENE_TRANSMISSIVE", transmissive},
           {"WP_SCENE_MICROFACET", microfacet},    {"WP_SCENE_METALLIC", metallic},
           {"WP_SCENE_EMISSIVE", emissive},        {"WP_SCENE_SKY_SAMPLED", skySampled},
           {"WP_SCENE_INSTANCED", instanced},      {"WP_SCENE_PLANES", planes},
           {"WP_SCENE_SPHERES", spheres},          {"WP_SCENE_SKY_MAP", skyMap},
-          {"WP_SCENE_PUNCTUAL", punctual}};
+          {"WP_SCENE_PUNCTUAL", punctual},        {"WP_SCENE_BASE_COLOR_TEXTURE", baseColorTexture},
+          {"WP_SCENE_METALLIC_ROUGHNESS_TEXTURE", metallicRoughnessTexture},
+          {"WP_SCENE_NORMAL_TEXTURE", normalTexture},
+          {"WP_SCENE_EMISSIVE_TEXTURE", emissiveTexture},
+          {"WP_SCENE_EXTENSION_TEXTURES", extensionTextures}};
 }
 
 SceneFeatures SceneFeatures::everything() {
   SceneFeatures f;
   f.alphaTested = true;
-  f.textured = true;
+  f.baseColorTexture = true;
+  f.metallicRoughnessTexture = true;
+  f.normalTexture = true;
+  f.emissiveTexture = true;
+  f.extensionTextures = true;
   f.diffuse = true;
   f.emissive = true;
   f.skySampled = true;

@@ -28,7 +28,6 @@ struct GpuMeshRange {
 struct SceneFeatures {
   bool alphaTested = false;   // a triangle's material is MASK or BLEND (traverse.h)
   bool layered = false;       // a material has a clear coat or a sheen (material.h)
-  bool textured = false;      // a material has a texture (texture.h)
   bool transmissive = false;  // a material has transmission: glass (material.h)
   bool microfacet = false;    // a material is glTF's BRDF, not ideal diffuse or unlit (bsdf.h)
   bool metallic = false;      // a material has metalness: glTF's metal lobe (material.h)
@@ -43,9 +42,18 @@ struct SceneFeatures {
   bool spheres = false;  // the scene has spheres (traverse.h, surface.h)
   bool skyMap = false;   // the sky is a map of more than one texel, not uniform (environment.h)
   bool punctual = false;  // the scene has punctual lights (KHR_lights_punctual, lights.h)
+  // Which texture slots a material fills (materialBaseColorTexture and the rest, layout.h):
+  // each slot's lookups are code of their own, which lavapipe runs for every hit.
+  bool baseColorTexture = false;
+  bool metallicRoughnessTexture = false;
+  bool normalTexture = false;
+  bool emissiveTexture = false;
+  bool extensionTextures = false;  // KHR_materials_specular's, _sheen's or _clearcoat's
   // Both shade classes (layout.h): materials that need glTF's BRDF and materials that need
   // none of it. Vulkan then shades each class with a pipeline of its own (shade.comp).
   bool hasBothShadeClasses() const { return diffuse && microfacet; }
+  // Marks the texture slots material m fills.
+  void addTextureSlots(const gpu::GpuMaterial& m);
   // These features with the material ones (layers, transmission, metal, microfacet) as `needs`
   // says (WP_NEEDS_* bits, materialShadeNeeds).
   SceneFeatures withNeeds(uint32_t needs) const;

@@ -235,14 +235,22 @@ VkPipeline VulkanBackend::createPipeline(SpirvCode code, const SceneFeatures& fe
   // The constants in constant_id order, each 32 bits (VkBool32 or uint): the features of
   // prelude_glsl.h and the render's light selection, shade.comp's class and split, then the
   // traversal's stacks, top level, planes, spheres, the sky's map, punctual lights, the
-  // render's feature passes and its sampler (a stage without some of them ignores them,
-  // which Vulkan allows).
-  const std::array<uint32_t, 21> constants = {
-      features.alphaTested, features.layered,  features.textured,   features.transmissive, features.microfacet,
-      features.metallic,    features.emissive, features.skySampled, render_.solidAngleSelection, shadeClass,
-      splitShade_,          stacks_.inWorkgroupMemory, stacks_.topLevelEntries, stacks_.bottomLevelEntries,
-      features.instanced,   features.planes,           features.spheres,        features.skyMap,
-      features.punctual,    render_.featurePasses,     render_.independentSampler};
+  // render's feature passes and its sampler, the texture slots but the base colour's (a stage
+  // without some of them ignores them, which Vulkan allows).
+  const std::array<uint32_t, 25> constants = {
+      features.alphaTested,       features.layered,
+      features.baseColorTexture,  features.transmissive,
+      features.microfacet,        features.metallic,
+      features.emissive,          features.skySampled,
+      render_.solidAngleSelection, shadeClass,
+      splitShade_,                stacks_.inWorkgroupMemory,
+      stacks_.topLevelEntries,    stacks_.bottomLevelEntries,
+      features.instanced,         features.planes,
+      features.spheres,           features.skyMap,
+      features.punctual,          render_.featurePasses,
+      render_.independentSampler, features.metallicRoughnessTexture,
+      features.normalTexture,     features.emissiveTexture,
+      features.extensionTextures};
   std::array<VkSpecializationMapEntry, constants.size()> entries;
   for (uint32_t id = 0; id < entries.size(); ++id) {
     entries[id] = {id, uint32_t(id * sizeof(uint32_t)), sizeof(uint32_t)};
